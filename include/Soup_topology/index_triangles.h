@@ -1,0 +1,185 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Pipeline step 0: the index representation of a soup of explicit triangles, and the exact weld
+// of an indexed soup.
+
+#ifndef SOUP_TOPOLOGY_INDEX_TRIANGLES_H
+#define SOUP_TOPOLOGY_INDEX_TRIANGLES_H
+
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/soup_checks.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief what `index_triangles()` found.
+struct Index_report
+{
+  std::size_t input_triangles = 0;       ///< triangles read
+  std::size_t input_corners = 0;         ///< 3 x `input_triangles`
+  std::size_t vertices = 0;              ///< distinct points, i.e. the size of the point range
+  std::size_t collapsed_triangles = 0;   ///< triangles dropped because two corners are equal
+};
+
+namespace internal {
+template <class Face>
+void assign_triangle(Face& f, std::size_t a, std::size_t b, std::size_t c)
+{
+  using Index = std::decay_t<decltype(*std::begin(f))>;
+  auto it = std::begin(f);
+  *it++ = static_cast<Index>(a);
+  *it++ = static_cast<Index>(b);
+  *it = static_cast<Index>(c);
+}
+template <class Face, class = void>
+struct has_resize : std::false_type {};
+template <class Face>
+struct has_resize<Face, std::void_t<decltype(std::declval<Face&>().resize(3))>> : std::true_type {};
+
+template <class Face>
+Face make_triangle(std::size_t a, std::size_t b, std::size_t c)
+{
+  Face f;
+  if constexpr(has_resize<Face>::value) f.resize(3); // std::vector-like faces
+  assign_triangle(f, a, b, c);
+  return f;
+}
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief builds the index representation (patent, Figure 2) of a soup of explicit triangles,
+/// such as an STL file gives: a point range of distinct points and a face range of index
+/// triples, merging exactly equal coordinates.
+///
+/// Vertex indices follow the order of first appearance in `triangles` (corner by corner), so the
+/// result is deterministic. Triangles with two equal corners cannot be represented by three
+/// distinct indices: they are left out and counted in `Index_report::collapsed_triangles`.
+/// Expected linear time for kernels whose coordinates are `double` (hashing); O(n log n) for
+/// exact number types (sorting).
+///
+/// \tparam TriangleRange a range whose elements are ranges of 3 `Point_3`
+///         (`std::array<Point_3,3>`, ...)
+/// \tparam PointRange a `std::vector`-like container of the same `Point_3`
+/// \tparam FaceRange a `std::vector`-like container of triangles (`std::array<std::size_t,3>`,
+///         `std::vector<std::size_t>`, ...)
+/// \param triangles the input triangles (not modified)
+/// \param points receives the distinct points (cleared first)
+/// \param faces receives the triangles (cleared first)
+/// \throws Invalid_input if an element of `triangles` does not have 3 points.
+template <class TriangleRange, class PointRange, class FaceRange>
+Index_report index_triangles(const TriangleRange& triangles, PointRange& points, FaceRange& faces)
+{
+  using Point = typename PointRange::value_type;
+  using Face = typename FaceRange::value_type;
+  Index_report report;
+  std::vector<Point> corners;
+  std::size_t t = 0;
+  for(const auto& tr : triangles) {
+    if(internal::face_size(tr) != 3)
+      throw Invalid_input("triangle " + std::to_string(t) + " has " + std::to_string(internal::face_size(tr)) +
+                          " corners; expected 3");
+    for(const auto& p : tr) corners.push_back(p);
+    ++t;
+  }
+  report.input_triangles = t;
+  report.input_corners = corners.size();
+  if(corners.size() >= std::size_t(0xFFFFFFF0u))
+    throw Invalid_input("too many corners (" + std::to_string(corners.size()) + ") for 32-bit indices");
+  const std::vector<std::uint32_t> first_of =
+    internal::first_equal_points(corners.size(), [&](std::size_t i) -> const Point& { return corners[i]; });
+  // Number the distinct points in order of first appearance.
+  std::vector<std::uint32_t> index_of(corners.size());
+  points.clear();
+  for(std::size_t i = 0; i < corners.size(); ++i) {
+    if(first_of[i] == i) { index_of[i] = static_cast<std::uint32_t>(points.size()); points.push_back(corners[i]); }
+    else index_of[i] = index_of[first_of[i]];
+  }
+  faces.clear();
+  faces.reserve(t);
+  for(std::size_t k = 0; k < t; ++k) {
+    const std::size_t a = index_of[3 * k], b = index_of[3 * k + 1], c = index_of[3 * k + 2];
+    if(a == b || b == c || c == a) { ++report.collapsed_triangles; continue; }
+    faces.push_back(internal::make_triangle<Face>(a, b, c));
+  }
+  report.vertices = points.size();
+  return report;
+}
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief merges the points of an indexed soup that have exactly the same coordinates: every
+/// face refers to the first of equal points afterwards, and the later copies are removed from
+/// `points` (the remaining points keep their relative order).
+///
+/// Faces may be polygons of any size. Faces that end up with a repeated index are not removed
+/// here (see `remove_collapsed_triangles()`).
+/// \tparam PointRange a `std::vector`-like container of `Point_3`
+/// \tparam FaceRange a random-access range of faces, each a range of vertex indices
+/// \returns the number of points removed.
+/// \throws Invalid_input if an index is out of range (nothing is changed then).
+template <class PointRange, class FaceRange>
+std::size_t merge_duplicate_points(PointRange& points, FaceRange& faces)
+{
+  using Point = typename PointRange::value_type;
+  const std::size_t n = points.size();
+  std::size_t face_id = 0;
+  for(const auto& f : faces) {
+    for(std::size_t k = 0; k < internal::face_size(f); ++k)
+      if(internal::corner(f, k, face_id) >= n)
+        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
+                            std::to_string(internal::corner(f, k, face_id)) + " is out of range (" +
+                            std::to_string(n) + " points)");
+    ++face_id;
+  }
+  if(n >= std::size_t(0xFFFFFFF0u))
+    throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
+  const std::vector<std::uint32_t> first_of =
+    internal::first_equal_points(n, [&](std::size_t i) -> const Point& { return points[i]; });
+  std::vector<std::uint32_t> new_index(n);
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    if(first_of[i] == i) {
+      new_index[i] = static_cast<std::uint32_t>(kept);
+      if(kept != i) points[kept] = points[i];
+      ++kept;
+    } else {
+      new_index[i] = new_index[first_of[i]];
+    }
+  }
+  const std::size_t removed = n - kept;
+  points.resize(kept);
+  for(auto& f : faces)
+    for(auto& v : f) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+  return removed;
+}
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief removes the triangles that repeat a vertex index (collapsed by a weld).
+/// \returns the number of triangles removed.
+template <class FaceRange>
+std::size_t remove_collapsed_triangles(FaceRange& faces)
+{
+  const std::size_t before = faces.size();
+  faces.erase(std::remove_if(faces.begin(), faces.end(),
+                             [](const auto& f) {
+                               auto it = std::begin(f);
+                               const auto a = *it++, b = *it++, c = *it;
+                               return a == b || b == c || c == a;
+                             }),
+              faces.end());
+  return before - faces.size();
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INDEX_TRIANGLES_H

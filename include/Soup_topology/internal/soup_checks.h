@@ -1,0 +1,97 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Validation of indexed triangle soups, shared by every public entry point.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_SOUP_CHECKS_H
+#define SOUP_TOPOLOGY_INTERNAL_SOUP_CHECKS_H
+
+#include <Soup_topology/Invalid_input.h>
+
+#include <CGAL/number_utils.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <type_traits>
+
+namespace Soup_topology {
+namespace internal {
+
+/// number of corners of a face of a `FaceRange`, whatever its type.
+template <class Face>
+std::size_t face_size(const Face& f)
+{
+  return static_cast<std::size_t>(std::distance(std::begin(f), std::end(f)));
+}
+
+/// index of corner `k` of face `f`, as `std::size_t`; throws on a negative index.
+template <class Face>
+std::size_t corner(const Face& f, std::size_t k, std::size_t face_id)
+{
+  auto it = std::begin(f);
+  std::advance(it, static_cast<std::ptrdiff_t>(k));
+  const auto value = *it;
+  if constexpr(std::is_signed<std::decay_t<decltype(value)>>::value) {
+    if(value < 0)
+      throw Invalid_input("face " + std::to_string(face_id) + ": negative vertex index " +
+                          std::to_string(static_cast<long long>(value)));
+  }
+  return static_cast<std::size_t>(value);
+}
+
+/// throws `Invalid_input` naming the first face that is not a triangle of three distinct,
+/// in-range vertex indices. Reads only: the caller's data is never changed.
+template <class FaceRange>
+void check_triangle_soup(const FaceRange& faces, std::size_t number_of_points)
+{
+  if(number_of_points >= static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max() - 2))
+    throw Invalid_input("too many points (" + std::to_string(number_of_points) +
+                        "): indices are stored on 32 bits");
+  std::size_t face_id = 0;
+  for(const auto& f : faces) {
+    const std::size_t n = face_size(f);
+    if(n != 3)
+      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(n) +
+                          " vertices; a triangle soup needs exactly 3");
+    std::size_t v[3];
+    for(std::size_t k = 0; k < 3; ++k) {
+      v[k] = corner(f, k, face_id);
+      if(v[k] >= number_of_points)
+        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
+                            std::to_string(v[k]) + " is out of range (" +
+                            std::to_string(number_of_points) + " points)");
+    }
+    if(v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+      throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" +
+                          std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
+                          std::to_string(v[2]) + ")");
+    ++face_id;
+  }
+  if(face_id >= static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max() - 2))
+    throw Invalid_input("too many triangles (" + std::to_string(face_id) +
+                        "): indices are stored on 32 bits");
+}
+
+/// throws `Invalid_input` naming the first point with a NaN or infinite coordinate.
+template <class PointRange, class PointMap>
+void check_finite_points(const PointRange& points, const PointMap& point_map)
+{
+  std::size_t i = 0;
+  for(const auto& p : points) {
+    const auto& q = get(point_map, p);
+    const double c[3] = {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
+    for(double x : c)
+      if(!std::isfinite(x))
+        throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate");
+    ++i;
+  }
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_SOUP_CHECKS_H

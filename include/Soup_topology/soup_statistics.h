@@ -1,0 +1,58 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The counts a user looks at first: what `soup_topology stats` prints.
+
+#ifndef SOUP_TOPOLOGY_SOUP_STATISTICS_H
+#define SOUP_TOPOLOGY_SOUP_STATISTICS_H
+
+#include <Soup_topology/Adjacency_tables.h>
+
+#include <CGAL/Kernel_traits.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief topological and geometric counts of an indexed triangle soup.
+struct Soup_statistics
+{
+  std::size_t vertices = 0;                  ///< points of the soup
+  std::size_t triangles = 0;                 ///< triangles of the soup
+  std::size_t border_edges = 0;              ///< edges of one triangle only
+  std::size_t non_manifold_edges = 0;        ///< edges of three or more triangles
+  std::size_t non_manifold_vertices = 0;     ///< see `Adjacency_tables::non_manifold_vertices()`
+  std::size_t inconsistent_edges = 0;        ///< manifold edges traversed twice in the same direction
+  std::size_t components = 0;                ///< edge-connected components of the triangles
+  std::size_t zero_area_triangles = 0;       ///< triangles whose corners are collinear (exact predicate)
+  bool closed = false;                       ///< no border edge
+};
+
+/// \ingroup PkgSoupTopologyRef
+/// \brief computes `Soup_statistics` of the soup whose tables are `tables` and points `points`.
+/// Collinearity is decided by the kernel of the point type (exact with Epick and Epeck).
+template <class PointRange>
+Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tables& tables)
+{
+  using Point = typename PointRange::value_type;
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  typename Kernel::Collinear_3 collinear = Kernel().collinear_3_object();
+  Soup_statistics s;
+  s.vertices = points.size();
+  s.triangles = tables.number_of_triangles();
+  s.border_edges = tables.number_of_border_edges();
+  s.non_manifold_edges = tables.non_manifold_edges().size();
+  s.non_manifold_vertices = tables.non_manifold_vertices().size();
+  s.inconsistent_edges = tables.inconsistently_oriented_edges().size();
+  s.components = tables.number_of_connected_components();
+  s.closed = s.border_edges == 0;
+  for(const Adjacency_tables::Triangle& t : tables.triangles())
+    if(collinear(points[t[0]], points[t[1]], points[t[2]])) ++s.zero_area_triangles;
+  return s;
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_SOUP_STATISTICS_H
