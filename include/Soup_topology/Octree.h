@@ -1,0 +1,738 @@
+// Copyright (c) 2024 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// A Morton-addressed octree over a point range, with exact proximity queries.
+
+#ifndef SOUP_TOPOLOGY_OCTREE_H
+#define SOUP_TOPOLOGY_OCTREE_H
+
+#include <Soup_topology/internal/Octree_morton.h>
+#include <Soup_topology/internal/octree_parameters.h>
+
+#include <CGAL/Iterator_range.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/property_map.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyOctree
+/// The two ways of `Octree::vertices_near_segment()` to choose the boxes whose points are tested.
+enum class Segment_query_strategy
+{
+  /// the patent's equations (22)-(27): every leaf whose integer index range meets the index-space
+  /// box of the segment grown by the radius.
+  INDEX_SPACE_BOX,
+  /// the patent's equations (28)-(29): only the boxes that meet the radius-neighbourhood of the
+  /// segment itself (a box grown by the radius must be crossed by the segment).
+  NEIGHBORHOOD_CULLING
+};
+
+/// \ingroup PkgSoupTopologyOctree
+/// \brief a Morton-addressed octree over the points of a random-access range, answering the two
+/// proximity questions of snapping (vertex near vertex, vertex near segment) exactly.
+///
+/// The coordinates are normalised to the workspace cube (the bounding box of the points, made
+/// cubic), scaled by `2^n` (`n` the maximum depth) and rounded down: every point keeps its integer
+/// address, whose Morton interleaving is the path from the root to its leaf. A box holding more
+/// than the bucket capacity is split into 8 equal children.
+///
+/// **Layout.** The tree is pointer-free and linear: the points are stored once, sorted by
+/// (Morton code, index), so that every node of the tree is a contiguous index range of that
+/// array; nodes are 16-byte records in one vector, the 8 children of a node consecutive. We chose
+/// this over a pointer-based tree (CGAL's `Orthtree`) because building it is one sort plus a
+/// binary-search pass (no per-node allocation), it is compact (about 60 bytes per point for a
+/// double kernel), the points of a leaf are contiguous in memory (the leaf scan is the hot loop of
+/// every query), and a Morton-prefix range is exactly the shard of a spatial partition.
+///
+/// **Exactness.** Every final decision is taken by the kernel: a point `p` is within `radius`
+/// of `q` if `Compare_squared_distance_3()(q, p, radius*radius) != LARGER`, and within `radius`
+/// of the segment `[a,b]` if `Compare_squared_distance_3()(p, Segment_3(a,b), radius*radius) !=
+/// LARGER` (`radius*radius` evaluated in `FT`). With `Exact_predicates_inexact_constructions_kernel`
+/// and `Exact_predicates_exact_constructions_kernel` these answers are exact for the input
+/// coordinates. The box pruning and a per-point prefilter run in `double` with margins larger than
+/// every rounding error involved, so they may keep a candidate too many but never lose one.
+///
+/// \tparam GeomTraits a CGAL Kernel (`Point_3`, `Segment_3`, `FT`, `Compare_squared_distance_3`,
+///         `Compare_distance_3`, `Equal_3`, `Construct_segment_3`)
+/// \tparam PointMap a model of `ReadablePropertyMap` from the value type of the range to `Point_3`
+///
+/// The class is a model of the concept `SpatialIndex`.
+template <typename GeomTraits,
+          typename PointMap = CGAL::Identity_property_map<typename GeomTraits::Point_3>>
+class Octree
+{
+public:
+  using Geom_traits = GeomTraits;
+  using Point_map = PointMap;
+  using FT = typename Geom_traits::FT;
+  using Point_3 = typename Geom_traits::Point_3;
+  using Segment_3 = typename Geom_traits::Segment_3;
+
+  /// index of a node of the tree (the root is 0)
+  using Node_index = std::uint32_t;
+  /// the integer address of a point or of a box at the maximum depth, one coordinate per axis
+  using Address = std::array<std::uint32_t, 3>;
+  /// the indices of the points of a node (into the range given at construction)
+  using Point_index_range = CGAL::Iterator_range<const std::uint32_t*>;
+
+  static constexpr std::size_t default_bucket_capacity = 16;
+  static constexpr std::size_t default_maximum_depth = 21;
+  static constexpr std::size_t largest_maximum_depth = 21;
+
+  /// \name Construction
+  /// @{
+
+  /// builds the tree over `points` with the default parameters.
+  template <typename PointRange>
+  explicit Octree(const PointRange& points, PointMap point_map = PointMap(),
+                  const Geom_traits& gt = Geom_traits())
+    : gt_(gt)
+  {
+    build(points, point_map, default_bucket_capacity, default_maximum_depth);
+  }
+
+  /// builds the tree over `points`.
+  ///
+  /// \cgalNamedParamsBegin
+  ///   \cgalParamNBegin{bucket_capacity} \cgalParamType{`std::size_t`, at least 1}
+  ///     \cgalParamDefault{16} \cgalParamNEnd
+  ///   \cgalParamNBegin{maximum_depth} \cgalParamType{`std::size_t`, in [1,21]}
+  ///     \cgalParamDefault{21} \cgalParamNEnd
+  ///   \cgalParamNBegin{segment_query_strategy} \cgalParamType{`Segment_query_strategy`}
+  ///     \cgalParamDefault{`Segment_query_strategy::NEIGHBORHOOD_CULLING`} \cgalParamNEnd
+  ///   \cgalParamNBegin{point_map} \cgalParamType{`PointMap`} \cgalParamDefault{`PointMap()`} \cgalParamNEnd
+  ///   \cgalParamNBegin{geom_traits} \cgalParamType{`GeomTraits`} \cgalParamDefault{`GeomTraits()`} \cgalParamNEnd
+  /// \cgalNamedParamsEnd
+  ///
+  /// \throw std::invalid_argument if a coordinate is not finite (the message names the point) or
+  ///        a parameter is out of range
+  template <typename PointRange, typename T, typename Tag, typename Base>
+  Octree(const PointRange& points, const CGAL::Named_function_parameters<T, Tag, Base>& np)
+    : gt_(CGAL::parameters::choose_parameter(
+          CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits), Geom_traits()))
+  {
+    using CGAL::parameters::choose_parameter;
+    using CGAL::parameters::get_parameter;
+    const PointMap pm =
+      choose_parameter(get_parameter(np, CGAL::internal_np::point_map), PointMap());
+    const std::size_t capacity =
+      choose_parameter(get_parameter(np, internal_np::bucket_capacity), default_bucket_capacity);
+    const std::size_t depth =
+      choose_parameter(get_parameter(np, internal_np::maximum_depth), default_maximum_depth);
+    strategy_ = choose_parameter(get_parameter(np, internal_np::segment_query_strategy),
+                                 Segment_query_strategy::NEIGHBORHOOD_CULLING);
+    build(points, pm, capacity, depth);
+  }
+
+  /// @}
+
+  /// \name Queries
+  /// Each query throws `std::invalid_argument` if `radius` is negative or NaN.
+  /// @{
+
+  /// returns the index of the point closest to `q` among those within `radius` of `q`
+  /// (the smallest index among equally close points), or nothing.
+  std::optional<std::size_t> nearest_vertex(const Point_3& q, const FT& radius) const
+  {
+    check_radius(radius);
+    if(empty())
+      return std::nullopt;
+    const FT r2 = radius * radius;
+    const Query_point qa = approximate(q);
+    double bound = radius_bound(r2, qa.err);
+    double bound2 = bound * bound;
+
+    typename Geom_traits::Compare_squared_distance_3 compare_sq =
+      gt_.compare_squared_distance_3_object();
+    typename Geom_traits::Compare_distance_3 compare_dist = gt_.compare_distance_3_object();
+
+    std::uint32_t best = npos;  // sorted position of the best point so far
+    Stack stack;
+    stack.push_back(Frame{0, {{0, 0, 0}}});
+    while(!stack.empty())
+    {
+      const Frame f = stack.back();
+      stack.pop_back();
+      const Node& nd = nodes_[f.node];
+      if(box_point_squared_distance(f, qa.c) > bound2)
+        continue;
+      if(nd.first_child == 0)
+      {
+        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+        {
+          const double d2 = point_squared_distance(k, qa.c);
+          if(d2 > bound2)
+            continue;
+          bool better;
+          if(best == npos)
+            better = compare_sq(q, points_[k], r2) != CGAL::LARGER;
+          else
+          {
+            const CGAL::Comparison_result c = compare_dist(q, points_[k], points_[best]);
+            better = (c == CGAL::SMALLER) || (c == CGAL::EQUAL && ids_[k] < ids_[best]);
+          }
+          if(better)
+          {
+            best = k;
+            const double b = (std::sqrt(d2) + 2 * (margin_ + qa.err)) * (1 + 1e-12);
+            if(b < bound)
+            {
+              bound = b;
+              bound2 = b * b;
+            }
+          }
+        }
+        continue;
+      }
+      // visit the children nearest first: push them farthest first (insertion sort, <= 8)
+      double dist[8];
+      Frame child[8];
+      int count = 0;
+      for(int i = 0; i < 8; ++i)
+      {
+        const Frame c = child_frame(f, nd, i);
+        const Node& cn = nodes_[c.node];
+        if(cn.begin == cn.end)
+          continue;
+        const double d2 = box_point_squared_distance(c, qa.c);
+        if(d2 > bound2)
+          continue;
+        int j = count++;
+        for(; j > 0 && dist[j - 1] < d2; --j)
+        {
+          dist[j] = dist[j - 1];
+          child[j] = child[j - 1];
+        }
+        dist[j] = d2;
+        child[j] = c;
+      }
+      for(int i = 0; i < count; ++i)
+        stack.push_back(child[i]);
+    }
+    if(best == npos)
+      return std::nullopt;
+    return std::optional<std::size_t>(ids_[best]);
+  }
+
+  /// writes to `out`, in increasing order, the index of every point within `radius` of `q`.
+  template <typename OutputIterator>
+  OutputIterator vertices_near_point(const Point_3& q, const FT& radius, OutputIterator out) const
+  {
+    check_radius(radius);
+    if(empty())
+      return out;
+    const FT r2 = radius * radius;
+    const Query_point qa = approximate(q);
+    const double bound = radius_bound(r2, qa.err);
+    const double bound2 = bound * bound;
+    typename Geom_traits::Compare_squared_distance_3 compare_sq =
+      gt_.compare_squared_distance_3_object();
+
+    std::vector<std::size_t> found;
+    Stack stack;
+    stack.push_back(Frame{0, {{0, 0, 0}}});
+    while(!stack.empty())
+    {
+      const Frame f = stack.back();
+      stack.pop_back();
+      const Node& nd = nodes_[f.node];
+      if(nd.begin == nd.end || box_point_squared_distance(f, qa.c) > bound2)
+        continue;
+      if(nd.first_child == 0)
+      {
+        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+          if(point_squared_distance(k, qa.c) <= bound2 &&
+             compare_sq(q, points_[k], r2) != CGAL::LARGER)
+            found.push_back(ids_[k]);
+        continue;
+      }
+      for(int i = 7; i >= 0; --i)
+        stack.push_back(child_frame(f, nd, i));
+    }
+    std::sort(found.begin(), found.end());
+    return std::copy(found.begin(), found.end(), out);
+  }
+
+  /// writes to `out`, in increasing order, the index of every point within `radius` of the
+  /// closed segment `[a,b]`, choosing the candidate boxes with `strategy`.
+  template <typename OutputIterator>
+  OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
+                                       OutputIterator out, Segment_query_strategy strategy) const
+  {
+    check_radius(radius);
+    if(empty())
+      return out;
+    if(gt_.equal_3_object()(a, b))
+      return vertices_near_point(a, radius, out);
+
+    const FT r2 = radius * radius;
+    const Query_point aa = approximate(a), ba = approximate(b);
+    Segment_approx s;
+    double len2 = 0;
+    for(int i = 0; i < 3; ++i)
+    {
+      s.a[i] = aa.c[i];
+      s.d[i] = ba.c[i] - aa.c[i];
+      len2 += s.d[i] * s.d[i];
+    }
+    s.len2 = len2;
+    const double len = std::sqrt(len2);
+    const double rhi = radius_bound(r2, 0);
+    // the double point-segment distance may be off by a few ulps of (length + distance); a
+    // segment whose squared length underflows is treated as the point a (error at most len)
+    double bound = (rhi + 2 * std::max(aa.err, ba.err) + 1e-10 * (len + rhi) +
+                    (len2 < 1e-280 ? len : 0.)) * (1 + 1e-12);
+    const double bound2 = bound * bound;
+
+    const Segment_3 seg = gt_.construct_segment_3_object()(a, b);
+    typename Geom_traits::Compare_squared_distance_3 compare_sq =
+      gt_.compare_squared_distance_3_object();
+
+    // index-space box of the segment grown by the bound (equations (22)-(24))
+    std::array<std::uint32_t, 3> ilo{}, ihi{};
+    if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
+    {
+      for(int i = 0; i < 3; ++i)
+      {
+        const double lo = std::min(aa.c[i], ba.c[i]) - bound;
+        const double hi = std::max(aa.c[i], ba.c[i]) + bound;
+        ilo[i] = index_of(lo, i, -1);
+        ihi[i] = index_of(hi, i, +1);
+      }
+    }
+
+    std::vector<std::size_t> found;
+    Stack stack;
+    stack.push_back(Frame{0, {{0, 0, 0}}});
+    while(!stack.empty())
+    {
+      const Frame f = stack.back();
+      stack.pop_back();
+      const Node& nd = nodes_[f.node];
+      if(nd.begin == nd.end)
+        continue;
+      if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
+      {
+        // equations (26)-(27): the box's index range must meet [ilo, ihi] on every axis
+        const unsigned shift = depth_ - nd.level;
+        bool meets = true;
+        for(int i = 0; i < 3 && meets; ++i)
+        {
+          const std::uint64_t lo = std::uint64_t(f.c[i]) << shift;
+          const std::uint64_t hi = ((std::uint64_t(f.c[i]) + 1) << shift) - 1;
+          meets = lo <= ihi[i] && ilo[i] <= hi;
+        }
+        if(!meets)
+          continue;
+      }
+      else if(!box_meets_segment(f, s, bound))
+        continue;
+      if(nd.first_child == 0)
+      {
+        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+          if(point_segment_squared_distance(k, s) <= bound2 &&
+             compare_sq(points_[k], seg, r2) != CGAL::LARGER)
+            found.push_back(ids_[k]);
+        continue;
+      }
+      for(int i = 7; i >= 0; --i)
+        stack.push_back(child_frame(f, nd, i));
+    }
+    std::sort(found.begin(), found.end());
+    return std::copy(found.begin(), found.end(), out);
+  }
+
+  /// same as above with the strategy chosen at construction
+  /// (`Segment_query_strategy::NEIGHBORHOOD_CULLING` by default).
+  template <typename OutputIterator>
+  OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
+                                       OutputIterator out) const
+  {
+    return vertices_near_segment(a, b, radius, out, strategy_);
+  }
+
+  /// @}
+
+  /// \name The bi-directional structure
+  /// @{
+
+  /// the number of points
+  std::size_t size() const { return ids_.size(); }
+  bool empty() const { return ids_.empty(); }
+  /// the maximum depth `n`: addresses have `n` bits per axis
+  std::size_t maximum_depth() const { return depth_; }
+  std::size_t bucket_capacity() const { return capacity_; }
+  Segment_query_strategy segment_query_strategy() const { return strategy_; }
+  /// the number of nodes (leaves and inner nodes, empty children included)
+  std::size_t number_of_nodes() const { return nodes_.size(); }
+
+  /// the integer address of point `i`: its coordinates normalised to the workspace cube,
+  /// scaled by `2^n` and rounded down (the "address embedded in the coordinate")
+  Address address(std::size_t i) const
+  {
+    Address r;
+    internal::morton_decode_3(codes_[position(i)], r[0], r[1], r[2]);
+    return r;
+  }
+
+  /// the Morton code of point `i` (the interleaved bits of its address, `3n` bits)
+  std::uint64_t morton_code(std::size_t i) const { return codes_[position(i)]; }
+
+  /// the leaf holding point `i`, found by following the bits of its address from the root
+  Node_index leaf(std::size_t i) const
+  {
+    const std::uint64_t code = codes_[position(i)];
+    Node_index n = 0;
+    while(nodes_[n].first_child != 0)
+    {
+      const unsigned shift = 3 * (depth_ - 1 - nodes_[n].level);
+      n = nodes_[n].first_child + Node_index((code >> shift) & 7);
+    }
+    return n;
+  }
+
+  bool is_leaf(Node_index n) const { return nodes_[n].first_child == 0; }
+  /// the depth of node `n` (the root has depth 0)
+  std::size_t depth(Node_index n) const { return nodes_[n].level; }
+  /// the `i`-th child of the inner node `n`, `i` the octant `4*x + 2*y + z` (bits of the address)
+  Node_index child(Node_index n, int i) const { return nodes_[n].first_child + Node_index(i); }
+  /// the indices of the points inside node `n`, in Morton order
+  Point_index_range points(Node_index n) const
+  {
+    return Point_index_range(ids_.data() + nodes_[n].begin, ids_.data() + nodes_[n].end);
+  }
+
+  /// the workspace cube: minimal corner and side length
+  std::array<double, 3> workspace_origin() const { return origin_; }
+  double workspace_side() const { return side_; }
+
+  /// @}
+
+private:
+  struct Node
+  {
+    std::uint32_t begin, end;  // range of sorted positions
+    std::uint32_t first_child; // 0 for a leaf (the root is never a child)
+    std::uint32_t level;
+  };
+  struct Frame
+  {
+    Node_index node;
+    std::array<std::uint32_t, 3> c; // cell coordinates at the node's level
+  };
+  struct Frame_stack
+  {
+    // a depth-first traversal holds at most 7 pending siblings per level
+    std::array<Frame, 8 * (largest_maximum_depth + 2)> data;
+    std::size_t n = 0;
+    bool empty() const { return n == 0; }
+    void push_back(const Frame& f) { data[n++] = f; }
+    const Frame& back() const { return data[n - 1]; }
+    void pop_back() { --n; }
+  };
+  using Stack = Frame_stack;
+  struct Query_point
+  {
+    std::array<double, 3> c;
+    double err; // bound on the distance between the exact point and c
+  };
+  struct Segment_approx
+  {
+    std::array<double, 3> a, d;
+    double len2;
+  };
+
+  static constexpr std::uint32_t npos = std::numeric_limits<std::uint32_t>::max();
+
+  template <typename PointRange>
+  void build(const PointRange& range, const PointMap& pm, std::size_t capacity, std::size_t depth)
+  {
+    if(capacity < 1)
+      throw std::invalid_argument("Soup_topology::Octree: the bucket capacity must be at least 1");
+    if(depth < 1 || depth > largest_maximum_depth)
+      throw std::invalid_argument("Soup_topology::Octree: the maximum depth must be in [1, 21]");
+    capacity_ = capacity;
+    depth_ = static_cast<unsigned>(depth);
+
+    const std::size_t n = static_cast<std::size_t>(std::distance(range.begin(), range.end()));
+    if(n >= std::size_t(npos))
+      throw std::length_error("Soup_topology::Octree: too many points (at most 2^32 - 2)");
+
+    // 1. approximate coordinates, checked
+    std::vector<Point_3> input;
+    input.reserve(n);
+    std::vector<std::array<double, 3>> approx(n);
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    double max_abs = 0, err = 0;
+    std::size_t i = 0;
+    for(const auto& e : range)
+    {
+      input.push_back(get(pm, e));
+      const Point_3& p = input.back();
+      const std::pair<double, double> iv[3] = {CGAL::to_interval(p.x()), CGAL::to_interval(p.y()),
+                                              CGAL::to_interval(p.z())};
+      for(int k = 0; k < 3; ++k)
+      {
+        if(!std::isfinite(iv[k].first) || !std::isfinite(iv[k].second))
+          throw std::invalid_argument("Soup_topology::Octree: point " + std::to_string(i) +
+                                      " has a non-finite coordinate");
+        const double c = iv[k].first == iv[k].second ? iv[k].first
+                                                     : 0.5 * iv[k].first + 0.5 * iv[k].second;
+        approx[i][k] = c;
+        err = std::max(err, iv[k].second - iv[k].first);
+        if(i == 0 || c < lo[k]) lo[k] = c;
+        if(i == 0 || c > hi[k]) hi[k] = c;
+        max_abs = std::max(max_abs, std::abs(c));
+      }
+      ++i;
+    }
+
+    // 2. the workspace cube
+    double side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    if(!(side >= 1e-280))
+      side = max_abs >= 1e-280 ? max_abs : 1.0;
+    origin_ = {lo[0], lo[1], lo[2]};
+    side_ = side;
+    scale_ = std::ldexp(1.0, int(depth_)) / side;
+    cell_size_.resize(depth_ + 1);
+    for(unsigned l = 0; l <= depth_; ++l)
+      cell_size_[l] = std::ldexp(side, -int(l));
+    // every rounding error of the address computation, of the box corners and of the distance
+    // computations is a few ulps of the largest coordinate; the exact points are at most `err`
+    // away from their approximations (0 for a double kernel)
+    margin_ = 64 * DBL_EPSILON * (max_abs + side) + 2 * err + 1e-300;
+
+    // 3. Morton codes, sorted with the point index as tie-breaker (a deterministic layout)
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+    for(std::size_t j = 0; j < n; ++j)
+    {
+      std::uint32_t a[3];
+      for(int k = 0; k < 3; ++k)
+        a[k] = index_of(approx[j][k], k, 0);
+      keys[j] = std::make_pair(internal::morton_encode_3(a[0], a[1], a[2]), std::uint32_t(j));
+    }
+    radix_sort(keys);
+
+    points_.clear();
+    points_.reserve(n);
+    approx_.resize(n);
+    ids_.resize(n);
+    codes_.resize(n);
+    positions_.resize(n);
+    for(std::size_t j = 0; j < n; ++j)
+    {
+      const std::uint32_t id = keys[j].second;
+      points_.push_back(input[id]);
+      approx_[j] = approx[id];
+      ids_[j] = id;
+      codes_[j] = keys[j].first;
+      positions_[id] = std::uint32_t(j);
+    }
+
+    // 4. the nodes, breadth first; a node is split if it holds more than `capacity` points of
+    //    at least two different addresses (splitting identical addresses cannot separate them)
+    nodes_.clear();
+    nodes_.push_back(Node{0, std::uint32_t(n), 0, 0});
+    for(std::size_t ni = 0; ni < nodes_.size(); ++ni)
+    {
+      const Node nd = nodes_[ni];
+      if(nd.end - nd.begin <= capacity_ || nd.level >= depth_ ||
+         codes_[nd.begin] == codes_[nd.end - 1])
+        continue;
+      const unsigned shift = 3 * (depth_ - 1 - nd.level);
+      nodes_[ni].first_child = std::uint32_t(nodes_.size());
+      std::uint32_t begin = nd.begin;
+      for(std::uint64_t oct = 0; oct < 8; ++oct)
+      {
+        const std::uint32_t end =
+          oct == 7 ? nd.end
+                   : std::uint32_t(std::partition_point(codes_.begin() + begin,
+                                                        codes_.begin() + nd.end,
+                                                        [&](std::uint64_t c) {
+                                                          return ((c >> shift) & 7) <= oct;
+                                                        }) -
+                                   codes_.begin());
+        nodes_.push_back(Node{begin, end, 0, nd.level + 1});
+        begin = end;
+      }
+    }
+  }
+
+  // LSD radix sort on the code (the index is already in increasing order, and the sort is
+  // stable, so the result is sorted by (code, index))
+  void radix_sort(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keys) const
+  {
+    const unsigned bits = 3 * depth_;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> tmp(keys.size());
+    for(unsigned s = 0; s < bits; s += 11)
+    {
+      std::vector<std::uint32_t> count(2049, 0);
+      for(const auto& k : keys)
+        ++count[((k.first >> s) & 2047) + 1];
+      for(std::size_t j = 1; j < count.size(); ++j)
+        count[j] += count[j - 1];
+      for(const auto& k : keys)
+        tmp[count[(k.first >> s) & 2047]++] = k;
+      keys.swap(tmp);
+    }
+  }
+
+  // integer address along `axis` of coordinate `x`, clamped; `widen` moves it one cell away
+  std::uint32_t index_of(double x, int axis, int widen) const
+  {
+    const double t = std::floor((x - origin_[axis]) * scale_) + widen;
+    const double top = std::ldexp(1.0, int(depth_)) - 1;
+    if(!(t > 0))
+      return 0;
+    if(t >= top)
+      return std::uint32_t(top);
+    return std::uint32_t(t);
+  }
+
+  std::uint32_t position(std::size_t i) const
+  {
+    if(i >= positions_.size())
+      throw std::out_of_range("Soup_topology::Octree: point index out of range");
+    return positions_[i];
+  }
+
+  static void check_radius(const FT& radius)
+  {
+    if(!(radius >= FT(0)))
+      throw std::invalid_argument("Soup_topology::Octree: the radius must be non-negative");
+  }
+
+  Query_point approximate(const Point_3& p) const
+  {
+    Query_point r;
+    r.err = 0;
+    const std::pair<double, double> iv[3] = {CGAL::to_interval(p.x()), CGAL::to_interval(p.y()),
+                                            CGAL::to_interval(p.z())};
+    for(int k = 0; k < 3; ++k)
+    {
+      r.c[k] = iv[k].first == iv[k].second ? iv[k].first : 0.5 * iv[k].first + 0.5 * iv[k].second;
+      const double e = iv[k].second - iv[k].first;
+      r.err = std::max(r.err, std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
+    }
+    if(!std::isfinite(r.c[0]) || !std::isfinite(r.c[1]) || !std::isfinite(r.c[2]))
+      r.err = std::numeric_limits<double>::infinity();
+    return r;
+  }
+
+  // an upper bound on the radius, widened by every error of the double computations
+  double radius_bound(const FT& r2, double query_err) const
+  {
+    const double r2hi = CGAL::to_interval(r2).second;
+    return (std::sqrt(r2hi) + margin_ + 2 * query_err) * (1 + 1e-12);
+  }
+
+  Frame child_frame(const Frame& f, const Node& nd, int i) const
+  {
+    Frame c;
+    c.node = nd.first_child + Node_index(i);
+    c.c[0] = (f.c[0] << 1) | std::uint32_t((i >> 2) & 1);
+    c.c[1] = (f.c[1] << 1) | std::uint32_t((i >> 1) & 1);
+    c.c[2] = (f.c[2] << 1) | std::uint32_t(i & 1);
+    return c;
+  }
+
+  double box_point_squared_distance(const Frame& f, const std::array<double, 3>& q) const
+  {
+    const double cs = cell_size_[nodes_[f.node].level];
+    double d2 = 0;
+    for(int i = 0; i < 3; ++i)
+    {
+      const double lo = origin_[i] + f.c[i] * cs;
+      const double g = std::max({lo - q[i], q[i] - (lo + cs), 0.});
+      d2 += g * g;
+    }
+    return d2;
+  }
+
+  double point_squared_distance(std::uint32_t k, const std::array<double, 3>& q) const
+  {
+    const std::array<double, 3>& p = approx_[k];
+    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    return dx * dx + dy * dy + dz * dz;
+  }
+
+  double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s) const
+  {
+    const std::array<double, 3>& p = approx_[k];
+    const double v[3] = {p[0] - s.a[0], p[1] - s.a[1], p[2] - s.a[2]};
+    double t = 0;
+    if(s.len2 > 0)
+    {
+      t = (v[0] * s.d[0] + v[1] * s.d[1] + v[2] * s.d[2]) / s.len2;
+      t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    }
+    double d2 = 0;
+    for(int i = 0; i < 3; ++i)
+    {
+      const double w = v[i] - t * s.d[i];
+      d2 += w * w;
+    }
+    return d2;
+  }
+
+  // does the segment cross the box of `f` grown by `grow` (equations (28)-(29), conservative)?
+  bool box_meets_segment(const Frame& f, const Segment_approx& s, double grow) const
+  {
+    const double cs = cell_size_[nodes_[f.node].level];
+    const double tol = 1e-9;
+    double tmin = -tol, tmax = 1 + tol;
+    for(int i = 0; i < 3; ++i)
+    {
+      const double lo = origin_[i] + f.c[i] * cs - grow;
+      const double hi = origin_[i] + f.c[i] * cs + cs + grow;
+      if(s.d[i] == 0)
+      {
+        if(s.a[i] < lo || s.a[i] > hi)
+          return false;
+        continue;
+      }
+      const double inv = 1.0 / s.d[i];
+      double t0 = (lo - s.a[i]) * inv, t1 = (hi - s.a[i]) * inv;
+      if(t0 > t1)
+        std::swap(t0, t1);
+      tmin = std::max(tmin, t0 - tol);
+      tmax = std::min(tmax, t1 + tol);
+      if(tmin > tmax)
+        return false;
+    }
+    return true;
+  }
+
+  Geom_traits gt_;
+  Segment_query_strategy strategy_ = Segment_query_strategy::NEIGHBORHOOD_CULLING;
+  std::size_t capacity_ = default_bucket_capacity;
+  unsigned depth_ = default_maximum_depth;
+  std::array<double, 3> origin_{};
+  double side_ = 1, scale_ = 1, margin_ = 0;
+  std::vector<double> cell_size_;
+
+  std::vector<Point_3> points_;                  // sorted by (Morton code, index)
+  std::vector<std::array<double, 3>> approx_;    // their coordinates in double
+  std::vector<std::uint32_t> ids_;               // their indices in the input range
+  std::vector<std::uint64_t> codes_;             // their Morton codes
+  std::vector<std::uint32_t> positions_;         // input index -> sorted position
+  std::vector<Node> nodes_;
+};
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_OCTREE_H
