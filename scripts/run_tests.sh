@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian 12 machine, builds everything in Release and runs the whole test suite
+# (unit tests, examples, the command-line tool), then checks that an installed copy of the
+# package is found by a consumer project through find_package(Soup_topology).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+build=${BUILD_DIR:-build}
+jobs=${JOBS:-$(nproc)}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j "$jobs"
+ctest --test-dir "$build" --output-on-failure -j "$jobs"
+# The installed package works for a user project.
+prefix="$PWD/$build/install-prefix"
+cmake --install "$build" --prefix "$prefix" > /dev/null
+cmake -S test/install_consumer -B "$build/consumer" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" > /dev/null
+cmake --build "$build/consumer" -j "$jobs" > /dev/null
+"$build/consumer/consumer"

@@ -1,0 +1,600 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The index representation and the adjacency tables: the patent's cube (Figures 1-5, 7-9, tables
+// (1)-(18)), the CGAL non-manifold inputs, property tests on real meshes, bad input, and the
+// `stats` command.
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/soup_statistics.h>
+
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Tables = ST::Adjacency_tables;
+constexpr Tables::size_type B = Tables::border_edge;
+
+// The cube of Figures 1 and 2: vertices V0..V7 and triangles T0..T11 (edge i = (v_i, v_{i+1})).
+const std::array<std::array<double, 3>, 8> cube_vertices = {{
+  {-1, -1, +1}, {+1, -1, +1}, {+1, +1, +1}, {-1, +1, +1},
+  {-1, -1, -1}, {+1, -1, -1}, {+1, +1, -1}, {-1, +1, -1}}};
+const std::vector<Triangle> cube_triangles = {
+  {0, 1, 3}, {2, 3, 1}, {2, 6, 3}, {7, 3, 6}, {2, 1, 6}, {5, 6, 1},
+  {4, 7, 5}, {6, 5, 7}, {1, 0, 5}, {4, 5, 0}, {3, 7, 0}, {4, 0, 7}};
+
+// Table (5): the edge neighbours of T0..T11.
+const std::vector<std::array<Tables::size_type, 3>> table_5 = {
+  {8, 1, 10}, {2, 0, 4}, {4, 3, 1}, {10, 2, 7}, {1, 5, 2}, {7, 4, 8},
+  {11, 7, 9}, {5, 6, 3}, {0, 9, 5}, {6, 8, 11}, {3, 11, 0}, {9, 10, 6}};
+
+// Figure 3 / table C of Figure 4: the triangles around V0..V7.
+const std::vector<std::vector<Tables::size_type>> vertex_table = {
+  {0, 8, 9, 10, 11}, {0, 1, 4, 5, 8}, {1, 2, 4}, {0, 1, 2, 3, 10},
+  {6, 9, 11}, {5, 6, 7, 8, 9}, {2, 3, 4, 5, 7}, {3, 6, 7, 10, 11}};
+
+template <class K>
+std::vector<std::array<typename K::Point_3, 3>> cube_stl()
+{
+  std::vector<std::array<typename K::Point_3, 3>> stl;
+  for(const Triangle& t : cube_triangles) {
+    std::array<typename K::Point_3, 3> tri;
+    for(int k = 0; k < 3; ++k) {
+      const auto& c = cube_vertices[t[k]];
+      tri[k] = typename K::Point_3(c[0], c[1], c[2]);
+    }
+    stl.push_back(tri);
+  }
+  return stl;
+}
+
+void expect_edge_table(const Tables& adj, const std::vector<std::array<Tables::size_type, 3>>& expected)
+{
+  ASSERT_EQ(adj.number_of_triangles(), expected.size());
+  for(Tables::size_type t = 0; t < expected.size(); ++t)
+    for(int i = 0; i < 3; ++i)
+      EXPECT_EQ(adj.neighbor(t, i), expected[t][i]) << "triangle T" << t << ", edge " << i;
+}
+
+std::vector<Tables::size_type> around(const Tables& adj, Tables::size_type v)
+{
+  const auto r = adj.triangles_around_vertex(v);
+  return std::vector<Tables::size_type>(r.begin(), r.end());
+}
+
+// Every triangle's neighbour has it as a neighbour across the same two vertices.
+void expect_symmetric(const Tables& adj)
+{
+  for(Tables::size_type t = 0; t < adj.number_of_triangles(); ++t)
+    for(int i = 0; i < 3; ++i) {
+      const Tables::size_type u = adj.neighbor(t, i);
+      const Tables::size_type a = adj.vertex(t, i), b = adj.vertex(t, (i + 1) % 3);
+      std::vector<Tables::size_type> others;
+      adj.triangles_around_edge(t, i, std::back_inserter(others));
+      if(u == Tables::border_edge) { EXPECT_TRUE(others.empty()); continue; }
+      if(u == Tables::non_manifold_edge) {
+        EXPECT_GE(others.size(), 2u);
+        for(Tables::size_type w : others) EXPECT_EQ(adj.neighbor(w, adj.edge_index(w, a, b)), Tables::non_manifold_edge);
+        continue;
+      }
+      ASSERT_EQ(others.size(), 1u);
+      EXPECT_EQ(others[0], u);
+      const int j = adj.edge_index(u, a, b);
+      ASSERT_GE(j, 0);
+      EXPECT_EQ(adj.neighbor(u, j), t);
+    }
+  // The vertex table lists exactly the triangles containing each vertex.
+  std::vector<std::vector<Tables::size_type>> expected(adj.number_of_vertices());
+  for(Tables::size_type t = 0; t < adj.number_of_triangles(); ++t)
+    for(int i = 0; i < 3; ++i) expected[adj.vertex(t, i)].push_back(t);
+  for(Tables::size_type v = 0; v < adj.number_of_vertices(); ++v) EXPECT_EQ(around(adj, v), expected[v]) << "vertex " << v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The patent's cube
+
+TEST(PatentCube, IndexRepresentationOfFigure2)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::Index_report r = ST::index_triangles(cube_stl<Epick>(), points, triangles);
+  EXPECT_EQ(r.input_corners, 36u);
+  EXPECT_EQ(r.collapsed_triangles, 0u);
+  ASSERT_EQ(points.size(), 8u);
+  // First appearance numbering: the STL of Figure 2 lists V0 V1 V3 first, then V2, ...
+  // so the vertex list is a permutation of V0..V7; map it back and compare the triangle table.
+  std::vector<std::size_t> to_patent(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    bool found = false;
+    for(std::size_t v = 0; v < 8; ++v)
+      if(points[i] == Point(cube_vertices[v][0], cube_vertices[v][1], cube_vertices[v][2])) { to_patent[i] = v; found = true; }
+    ASSERT_TRUE(found);
+  }
+  EXPECT_EQ(to_patent[0], 0u);
+  EXPECT_EQ(to_patent[1], 1u);
+  EXPECT_EQ(to_patent[2], 3u);
+  ASSERT_EQ(triangles.size(), 12u);
+  for(std::size_t t = 0; t < 12; ++t)
+    for(int k = 0; k < 3; ++k) EXPECT_EQ(to_patent[triangles[t][k]], cube_triangles[t][k]) << "T" << t;
+}
+
+TEST(PatentCube, VertexNeighbourTableOfFigure3)
+{
+  const Tables adj(cube_triangles, 8);
+  for(Tables::size_type v = 0; v < 8; ++v) EXPECT_EQ(around(adj, v), vertex_table[v]) << "V" << v;
+  // Table (2): the candidates for the first edge of T0 are the other triangles of V0.
+  EXPECT_EQ(around(adj, 0), (std::vector<Tables::size_type>{0, 8, 9, 10, 11}));
+  // The text: V2 is shared among T1, T2 and T4.
+  EXPECT_EQ(around(adj, 2), (std::vector<Tables::size_type>{1, 2, 4}));
+}
+
+TEST(PatentCube, EdgeNeighbourTable5)
+{
+  const Tables adj(cube_triangles, 8);
+  expect_edge_table(adj, table_5);
+  // The text: T4 is connected to T1, T2 and T5.
+  std::set<Tables::size_type> n4 = {adj.neighbor(4, 0), adj.neighbor(4, 1), adj.neighbor(4, 2)};
+  EXPECT_EQ(n4, (std::set<Tables::size_type>{1, 2, 5}));
+  EXPECT_TRUE(adj.is_closed());
+  EXPECT_TRUE(adj.border_edges().empty());
+  EXPECT_TRUE(adj.non_manifold_edges().empty());
+  EXPECT_TRUE(adj.non_manifold_vertices().empty());
+  EXPECT_TRUE(adj.inconsistently_oriented_edges().empty());
+  EXPECT_EQ(adj.number_of_connected_components(), 1u);
+  expect_symmetric(adj);
+}
+
+// Tables (8)-(9): V0 duplicated into V0b (index 8) for T10 and T11.
+std::vector<Triangle> cube_with_v0b()
+{
+  std::vector<Triangle> t = cube_triangles;
+  t[10] = {3, 7, 8};
+  t[11] = {4, 8, 7};
+  return t;
+}
+
+TEST(PatentCube, DuplicatedVertexTables8And9)
+{
+  const Tables adj(cube_with_v0b(), 9);
+  EXPECT_EQ(around(adj, 0), (std::vector<Tables::size_type>{0, 8, 9}));
+  EXPECT_EQ(around(adj, 8), (std::vector<Tables::size_type>{10, 11}));
+  std::vector<std::array<Tables::size_type, 3>> table_9 = table_5;
+  table_9[0] = {8, 1, B};
+  table_9[9] = {6, 8, B};
+  table_9[10] = {3, 11, B};
+  table_9[11] = {B, 10, 6};
+  expect_edge_table(adj, table_9);
+  // Exactly four unconnected edges, one in each of T0, T9, T10, T11.
+  const std::vector<Tables::Edge> border = adj.border_edges();
+  ASSERT_EQ(border.size(), 4u);
+  EXPECT_EQ(border[0], (Tables::Edge{0, 2}));
+  EXPECT_EQ(border[1], (Tables::Edge{9, 2}));
+  EXPECT_EQ(border[2], (Tables::Edge{10, 2}));
+  EXPECT_EQ(border[3], (Tables::Edge{11, 0}));
+  expect_symmetric(adj);
+}
+
+TEST(PatentCube, ReplacingV0bRestoresTable5)
+{
+  Tables adj(cube_with_v0b(), 9);
+  adj.replace_vertex(8, 0);               // rules (a)-(c)
+  expect_edge_table(adj, table_5);
+  for(Tables::size_type v = 0; v < 8; ++v) EXPECT_EQ(around(adj, v), vertex_table[v]) << "V" << v;
+  EXPECT_TRUE(around(adj, 8).empty());
+  EXPECT_EQ(adj.triangle(10), (Tables::Triangle{3, 7, 0}));
+  EXPECT_EQ(adj.triangle(11), (Tables::Triangle{4, 0, 7}));
+  EXPECT_TRUE(adj.is_closed());
+  expect_symmetric(adj);
+}
+
+// Figure 7: T1 is replaced by T1a = (V2, V8, V1) and T1b = (V2, V3, V8), V8 = (0, 0, 1) lies on
+// the edge V1-V3 of T0. Triangle indices: T0 = 0, T1a = 1, T1b = 2, T2..T11 = 3..12; the split
+// appends T12 as index 13.
+struct Figure7
+{
+  std::map<std::string, Tables::size_type> id;
+  std::vector<Triangle> triangles;
+  Figure7()
+  {
+    triangles.push_back(cube_triangles[0]);
+    triangles.push_back({2, 8, 1});
+    triangles.push_back({2, 3, 8});
+    for(std::size_t t = 2; t < 12; ++t) triangles.push_back(cube_triangles[t]);
+    id["T0"] = 0; id["T1a"] = 1; id["T1b"] = 2;
+    for(int t = 2; t < 12; ++t) id["T" + std::to_string(t)] = static_cast<Tables::size_type>(t + 1);
+    id["T12"] = 13;
+  }
+};
+
+TEST(PatentCube, TJunctionTables11And13)
+{
+  const Figure7 f;
+  const Tables adj(f.triangles, 9);
+  auto& id = f.id;
+  // Table (11): three unconnected edges.
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 0), id.at("T8"));
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 1), B);
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 2), id.at("T10"));
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 0), id.at("T1b"));
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 1), B);
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 2), id.at("T4"));
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 0), id.at("T2"));
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 1), B);
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 2), id.at("T1a"));
+  EXPECT_EQ(adj.number_of_border_edges(), 3u);
+  // Table (13): the triangles of V8.
+  EXPECT_EQ(around(adj, 8), (std::vector<Tables::size_type>{id.at("T1a"), id.at("T1b")}));
+}
+
+TEST(PatentCube, TJunctionSplitTables14To18)
+{
+  const Figure7 f;
+  Tables adj(f.triangles, 9);
+  auto& id = f.id;
+  // The unconnected edge V1-V3 is edge 1 of T0: split it at V8 (rule table (15)).
+  const Tables::size_type t12 = adj.split_triangle(id.at("T0"), 1, 8);
+  EXPECT_EQ(t12, id.at("T12"));
+  // Table (14).
+  EXPECT_EQ(adj.triangle(id.at("T0")), (Tables::Triangle{0, 1, 8}));
+  EXPECT_EQ(adj.triangle(t12), (Tables::Triangle{0, 8, 3}));
+  // Table (16) (lists in increasing triangle order).
+  auto sorted = [](std::vector<Tables::size_type> v) { std::sort(v.begin(), v.end()); return v; };
+  EXPECT_EQ(around(adj, 0), sorted({id.at("T0"), id.at("T8"), id.at("T9"), id.at("T10"), id.at("T11"), id.at("T12")}));
+  EXPECT_EQ(around(adj, 1), sorted({id.at("T0"), id.at("T1a"), id.at("T4"), id.at("T5"), id.at("T8")}));
+  EXPECT_EQ(around(adj, 3), sorted({id.at("T1b"), id.at("T2"), id.at("T3"), id.at("T10"), id.at("T12")}));
+  EXPECT_EQ(around(adj, 8), sorted({id.at("T1a"), id.at("T1b"), id.at("T0"), id.at("T12")}));
+  // Table (18).
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 0), id.at("T8"));
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 1), id.at("T1a"));
+  EXPECT_EQ(adj.neighbor(id.at("T0"), 2), id.at("T12"));
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 0), id.at("T1b"));
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 1), id.at("T0"));
+  EXPECT_EQ(adj.neighbor(id.at("T1a"), 2), id.at("T4"));
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 0), id.at("T2"));
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 1), id.at("T12"));
+  EXPECT_EQ(adj.neighbor(id.at("T1b"), 2), id.at("T1a"));
+  EXPECT_EQ(adj.neighbor(t12, 0), id.at("T0"));
+  EXPECT_EQ(adj.neighbor(t12, 1), id.at("T1b"));
+  EXPECT_EQ(adj.neighbor(t12, 2), id.at("T10"));
+  // Figure 9: the cube is closed again, and consistently oriented.
+  EXPECT_TRUE(adj.is_closed());
+  EXPECT_TRUE(adj.inconsistently_oriented_edges().empty());
+  expect_symmetric(adj);
+}
+
+TEST(PatentCube, SplitRulesOnEveryEdge)
+{
+  // Rule table (15) for each of the three edges: the kept triangle replaces v_{i+1}, the new one v_i.
+  for(int i = 0; i < 3; ++i) {
+    Tables adj(std::vector<Triangle>{{0, 1, 2}}, 4);
+    const auto t_new = adj.split_triangle(0, i, 3);
+    Tables::Triangle kept = {0, 1, 2}, created = {0, 1, 2};
+    kept[(i + 1) % 3] = 3;
+    created[i] = 3;
+    EXPECT_EQ(adj.triangle(0), kept);
+    EXPECT_EQ(adj.triangle(t_new), created);
+    EXPECT_EQ(adj.neighbor(0, (i + 1) % 3), t_new);
+    expect_symmetric(adj);
+  }
+}
+
+TEST(PatentCube, SameTablesUnderEveryKernel)
+{
+  std::vector<Triangle> t1, t2, t3;
+  std::vector<CGAL::Simple_cartesian<double>::Point_3> p1;
+  std::vector<Epick::Point_3> p2;
+  std::vector<CGAL::Exact_predicates_exact_constructions_kernel::Point_3> p3;
+  ST::index_triangles(cube_stl<CGAL::Simple_cartesian<double>>(), p1, t1);
+  ST::index_triangles(cube_stl<Epick>(), p2, t2);
+  ST::index_triangles(cube_stl<CGAL::Exact_predicates_exact_constructions_kernel>(), p3, t3);
+  EXPECT_EQ(t1, t2);
+  EXPECT_EQ(t1, t3);
+  EXPECT_EQ(p3.size(), 8u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input
+
+TEST(BadInput, ClearErrorsAndUntouchedData)
+{
+  std::vector<Triangle> out_of_range = {{0, 1, 2}, {0, 2, 7}};
+  try {
+    Tables adj(out_of_range, 4);
+    FAIL() << "no exception";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("face 1"), std::string::npos) << e.what();
+  }
+  std::vector<Triangle> repeated = {{0, 1, 2}, {3, 3, 1}};
+  EXPECT_THROW(Tables(repeated, 4), ST::Invalid_input);
+  std::vector<std::vector<int>> quad = {{0, 1, 2}, {0, 1, 2, 3}};
+  try {
+    Tables adj(quad, 4);
+    FAIL() << "no exception";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("face 1 has 4 vertices"), std::string::npos) << e.what();
+  }
+  std::vector<std::vector<int>> negative = {{0, -1, 2}};
+  EXPECT_THROW(Tables(negative, 4), ST::Invalid_input);
+  // Empty input is fine: no triangle, nothing to report.
+  const Tables empty(std::vector<Triangle>{}, 0);
+  EXPECT_EQ(empty.number_of_triangles(), 0u);
+  EXPECT_TRUE(empty.is_closed());
+  EXPECT_EQ(empty.number_of_connected_components(), 0u);
+  // merge_duplicate_points leaves everything as it was when an index is out of range.
+  std::vector<Point> points = {Point(0, 0, 0), Point(0, 0, 0), Point(1, 0, 0)};
+  std::vector<Triangle> faces = {{0, 1, 2}, {0, 2, 9}};
+  const auto points_before = points;
+  const auto faces_before = faces;
+  EXPECT_THROW(ST::merge_duplicate_points(points, faces), ST::Invalid_input);
+  EXPECT_EQ(points, points_before);
+  EXPECT_EQ(faces, faces_before);
+  // replace_vertex refuses to collapse a triangle, and changes nothing.
+  Tables adj(cube_triangles, 8);
+  EXPECT_THROW(adj.replace_vertex(1, 0), ST::Invalid_input);
+  expect_edge_table(adj, table_5);
+  EXPECT_THROW(adj.split_triangle(0, 0, 1), ST::Invalid_input);
+  EXPECT_THROW(adj.split_triangle(99, 0, 4), ST::Invalid_input);
+}
+
+TEST(IndexTriangles, CollapsedTrianglesAreDroppedAndCounted)
+{
+  std::vector<std::array<Point, 3>> soup = {
+    {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)},
+    {Point(0, 0, 0), Point(0, 0, 0), Point(0, 1, 0)},    // two equal corners
+    {Point(1, 0, 0), Point(-0.0, 1, 0), Point(0, 0, 0)}}; // -0.0 equals 0.0
+  std::vector<Point> points;
+  std::vector<std::vector<int>> faces;
+  const ST::Index_report r = ST::index_triangles(soup, points, faces);
+  EXPECT_EQ(r.collapsed_triangles, 1u);
+  EXPECT_EQ(points.size(), 3u);
+  ASSERT_EQ(faces.size(), 2u);
+  EXPECT_EQ(faces[1], (std::vector<int>{1, 2, 0}));
+}
+
+TEST(MergeDuplicatePoints, PortOfCGALRepairSoupCase)
+{
+  // 7 points, #3 and #5 equal #2, #6 equals #0 (CGAL's test_repair_polygon_soup case).
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 1, 0),
+                               Point(1, 1, 0), Point(0, 1, 0), Point(0, 0, 0)};
+  std::vector<std::vector<std::size_t>> polygons = {{0, 1, 2}, {6, 3, 1, 0}, {5}};
+  EXPECT_EQ(ST::merge_duplicate_points(points, polygons), 3u);
+  EXPECT_EQ(points.size(), 4u);
+  EXPECT_EQ(polygons[1], (std::vector<std::size_t>{0, 2, 1, 0}));
+  EXPECT_EQ(polygons[2], (std::vector<std::size_t>{2}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The CGAL peer inputs, with the counts measured in shared/data/README.md
+
+struct Measured
+{
+  const char* file;
+  std::size_t vertices, triangles, border, non_manifold_edges, components;
+};
+
+TEST(PeerData, NonManifoldAndDegenerateCounts)
+{
+  const Measured cases[] = {
+    {"cgal_repair/data_stitching/nm_cubes.off", 15, 28, 0, 2, 1},
+    {"cgal_repair/data_stitching/non_manifold.off", 4, 4, 0, 1, 1},
+    {"cgal_repair/data_stitching/non_manifold2.off", 4, 4, 0, 1, 1},
+    {"cgal_repair/data_repair/nm_edges_triple.off", 12, 10, 15, 1, 1},
+    {"cgal_repair/data_repair/three_triangles_sharing_a_vertex.off", 7, 3, 9, 0, 3},
+    {"cgal_repair/data_stitching/deg_border.off", 6, 6, 4, 0, 1},
+    {"cgal_repair/data_stitching/incidence_3.off", 7, 6, 6, 0, 1},
+    {"cgal_repair/data_stitching/pinched.off", 77, 102, 56, 0, 1},
+    {"cad/ALSTOM_TEST4.off", 1138, 2033, 231, 0, 6},
+    {"cgal_repair/pig.stl.xz", 8642, 16848, 1296, 0, 17},
+  };
+  for(const Measured& m : cases) {
+    SCOPED_TRACE(m.file);
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    soup_test::read_data_mesh(m.file, points, triangles);
+    const Tables adj(triangles, points.size());
+    EXPECT_EQ(points.size(), m.vertices);
+    EXPECT_EQ(adj.number_of_triangles(), m.triangles);
+    EXPECT_EQ(adj.number_of_border_edges(), m.border);
+    EXPECT_EQ(adj.non_manifold_edges().size(), m.non_manifold_edges);
+    EXPECT_EQ(adj.number_of_connected_components(), m.components);
+    // Cross-check with the slow independent counts.
+    const auto counts = soup_test::count_border_and_non_manifold_edges(triangles);
+    EXPECT_EQ(counts.first, m.border);
+    EXPECT_EQ(counts.second, m.non_manifold_edges);
+    EXPECT_EQ(soup_test::count_components(triangles), m.components);
+    expect_symmetric(adj);
+  }
+  // deg_border.off: one triangle collapses in the exact weld.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  EXPECT_EQ(soup_test::read_data_mesh("cgal_repair/data_stitching/deg_border.off", points, triangles).collapsed_triangles, 1u);
+  // three_triangles_sharing_a_vertex.off: one non-manifold vertex.
+  soup_test::read_data_mesh("cgal_repair/data_repair/three_triangles_sharing_a_vertex.off", points, triangles);
+  EXPECT_EQ(Tables(triangles, points.size()).non_manifold_vertices().size(), 1u);
+  // incoherent_patch_orientation.off: one edge traversed twice in the same direction.
+  soup_test::read_data_mesh("cgal_repair/data_stitching/incoherent_patch_orientation.off", points, triangles);
+  EXPECT_EQ(Tables(triangles, points.size()).inconsistently_oriented_edges().size(), 1u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Property tests on real meshes written as exploded soups
+
+class CleanMesh : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CleanMesh, ExplodedSoupWeldsBackAndTablesAreSymmetricAndStableUnderShuffling)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh(GetParam(), points, triangles);
+  std::vector<bool> used(points.size(), false);
+  for(const Triangle& t : triangles) for(std::size_t v : t) used[v] = true;
+  const std::size_t referenced = static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+
+  // Exploded soup -> index: the original number of (referenced) vertices comes back.
+  const auto soup = soup_test::explode(points, triangles);
+  std::vector<Point> welded_points;
+  std::vector<Triangle> welded;
+  const ST::Index_report r = ST::index_triangles(soup, welded_points, welded);
+  EXPECT_EQ(welded_points.size(), referenced);
+  EXPECT_EQ(welded.size(), triangles.size());
+  EXPECT_EQ(r.collapsed_triangles, 0u);
+
+  const Tables adj(welded, welded_points.size());
+  expect_symmetric(adj);
+  const auto counts = soup_test::count_border_and_non_manifold_edges(welded);
+  EXPECT_EQ(adj.number_of_border_edges(), counts.first);
+  EXPECT_EQ(adj.non_manifold_edges().size(), counts.second);
+
+  // Shuffle the triangles and rotate their corners: the tables are the same up to the permutation.
+  std::mt19937 rng(42);
+  std::vector<std::size_t> perm(welded.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<int> rotation(welded.size());
+  std::vector<Triangle> shuffled(welded.size());
+  for(std::size_t k = 0; k < welded.size(); ++k) {
+    const Triangle& t = welded[perm[k]];
+    rotation[k] = static_cast<int>(rng() % 3);
+    shuffled[k] = {t[rotation[k]], t[(rotation[k] + 1) % 3], t[(rotation[k] + 2) % 3]};
+  }
+  const Tables adj2(shuffled, welded_points.size());
+  std::vector<std::size_t> position(welded.size());
+  for(std::size_t k = 0; k < perm.size(); ++k) position[perm[k]] = k;
+  for(std::size_t k = 0; k < shuffled.size(); ++k)
+    for(int i = 0; i < 3; ++i) {
+      const int original_edge = (i + rotation[k]) % 3;
+      const auto u2 = adj2.neighbor(static_cast<Tables::size_type>(k), i);
+      const auto u1 = adj.neighbor(static_cast<Tables::size_type>(perm[k]), original_edge);
+      if(u1 >= Tables::non_manifold_edge) EXPECT_EQ(u2, u1);
+      else EXPECT_EQ(u2, position[u1]);
+    }
+  EXPECT_EQ(adj2.number_of_connected_components(), adj.number_of_connected_components());
+  EXPECT_EQ(adj2.non_manifold_vertices().size(), adj.non_manifold_vertices().size());
+}
+
+INSTANTIATE_TEST_SUITE_P(RealMeshes, CleanMesh,
+                         ::testing::Values("clean/elephant.off", "clean/fandisk.off.xz",
+                                           "clean/ChineseDragon-10kv.off.xz", "clean/armadillo.off.xz",
+                                           "clean/bunny00.off.xz", "clean/refined_elephant.off.xz"));
+
+TEST(CleanMeshFacts, ClosedAndManifoldAsMeasured)
+{
+  for(const char* f : {"clean/elephant.off", "clean/fandisk.off.xz", "clean/bunny00.off.xz"}) {
+    SCOPED_TRACE(f);
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    soup_test::read_data_mesh(f, points, triangles);
+    const Tables adj(triangles, points.size());
+    EXPECT_TRUE(adj.is_closed());
+    EXPECT_TRUE(adj.non_manifold_edges().empty());
+    EXPECT_TRUE(adj.non_manifold_vertices().empty());
+    EXPECT_TRUE(adj.inconsistently_oriented_edges().empty());
+  }
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("clean/ChineseDragon-10kv.off.xz", points, triangles);
+  EXPECT_EQ(Tables(triangles, points.size()).number_of_border_edges(), 6u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The command-line tool
+
+std::string cli() { return SOUP_TOPOLOGY_CLI; }
+
+TEST(CommandLine, StatsJsonMatchesIndependentCounts)
+{
+  for(const char* f : {"cgal_repair/pig.stl.xz", "cad/ALSTOM_TEST4.off", "real_defects/openscad/bad-stl-tardis.stl",
+                       "real_defects/admesh/block/remove-unconnected-bad.stl", "cgal_repair/data_stitching/nm_cubes.off",
+                       "cgal_repair/quads_to_stitch.off"}) {
+    SCOPED_TRACE(f);
+    const std::string path = soup_test::data_file(f);
+    const auto [out, code] = soup_test::run_command(cli() + " stats '" + path + "' --json");
+    ASSERT_EQ(code, 0) << out;
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    ST::IO::read_triangle_soup(path, points, triangles);
+    const auto counts = soup_test::count_border_and_non_manifold_edges(triangles);
+    EXPECT_EQ(soup_test::json_integer(out, "vertices"), static_cast<long long>(points.size()));
+    EXPECT_EQ(soup_test::json_integer(out, "triangles"), static_cast<long long>(triangles.size()));
+    EXPECT_EQ(soup_test::json_integer(out, "border_edges"), static_cast<long long>(counts.first));
+    EXPECT_EQ(soup_test::json_integer(out, "non_manifold_edges"), static_cast<long long>(counts.second));
+    EXPECT_EQ(soup_test::json_integer(out, "components"), static_cast<long long>(soup_test::count_components(triangles)));
+    EXPECT_EQ(soup_test::json_bool(out, "closed"), counts.first == 0);
+    EXPECT_GE(soup_test::json_integer(out, "non_manifold_vertices"), 0);
+    EXPECT_GE(soup_test::json_integer(out, "degenerate_triangles"), 0);
+  }
+  // Measured facts: pig.stl has 8642 distinct vertices, B = 1296, 17 components.
+  const auto [out, code] = soup_test::run_command(cli() + " stats '" + soup_test::data_file("cgal_repair/pig.stl.xz") + "' --json");
+  EXPECT_EQ(code, 0);
+  EXPECT_EQ(soup_test::json_integer(out, "vertices"), 8642);
+  EXPECT_EQ(soup_test::json_integer(out, "border_edges"), 1296);
+  EXPECT_EQ(soup_test::json_integer(out, "components"), 17);
+  // issue945f.stl: 1 zero-area triangle.
+  const auto [out2, code2] = soup_test::run_command(
+    cli() + " stats '" + soup_test::data_file("real_defects/openscad/issue945f.stl") + "' --json");
+  EXPECT_EQ(code2, 0);
+  EXPECT_EQ(soup_test::json_integer(out2, "degenerate_triangles"), 1);
+}
+
+TEST(CommandLine, HumanOutputByDefault)
+{
+  const auto [out, code] = soup_test::run_command(
+    cli() + " stats '" + soup_test::data_file("real_defects/admesh/block/exact-bad.stl") + "'");
+  EXPECT_EQ(code, 0);
+  EXPECT_NE(out.find("border_edges"), std::string::npos);
+  EXPECT_EQ(out.find('{'), std::string::npos);
+}
+
+TEST(CommandLine, BadFilesExitWithCode2AndAMessage)
+{
+  const std::string dir = soup_test::temporary_folder("cli_bad");
+  auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir + "/" + name, std::ios::binary) << content;
+    return dir + "/" + name;
+  };
+  std::string truncated(84, '\0');
+  truncated[80] = 10; // announces 10 facets, holds none
+  const std::pair<std::string, std::string> cases[] = {
+    {write("truncated.stl", truncated), "truncated"},
+    {write("garbage.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zero\n"), ":4:"},
+    {write("noend.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendfacet\n"),
+     "endloop"},
+    {write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), "bad.off: malformed"},
+    {write("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n"),
+     "non-finite"},
+    {dir + "/missing.stl", "cannot open"},
+    {write("model.xyz", "1 2 3\n"), "unknown file extension"},
+  };
+  for(const auto& c : cases) {
+    SCOPED_TRACE(c.first);
+    const auto [out, code] = soup_test::run_command(cli() + " stats '" + c.first + "' 2>&1");
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_NE(out.find(c.second), std::string::npos) << out;
+  }
+  const auto [out, code] = soup_test::run_command(cli() + " frobnicate 2>&1");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("unknown command"), std::string::npos);
+}
+
+} // namespace

@@ -1,0 +1,147 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Helpers shared by the tests: locating and decompressing the real meshes, exploding an indexed
+// mesh into an STL-like soup, and an independent (slow, obviously correct) edge count.
+
+#ifndef SOUP_TOPOLOGY_TEST_UTILITIES_H
+#define SOUP_TOPOLOGY_TEST_UTILITIES_H
+
+#include <Soup_topology/IO/read_triangle_soup.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace soup_test {
+
+/// the path of a file of the shared data folder, decompressed into a temporary folder if it ends
+/// in `.xz` (once per process).
+inline std::string data_file(const std::string& relative)
+{
+  const std::string path = std::string(SOUP_TOPOLOGY_DATA_DIR) + "/" + relative;
+  if(path.size() < 3 || path.substr(path.size() - 3) != ".xz") return path;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "soup_topology_test_data";
+  fs::create_directories(dir);
+  std::string flat = relative.substr(0, relative.size() - 3);
+  for(char& c : flat) if(c == '/') c = '_';
+  const fs::path out = dir / flat;
+  if(!fs::exists(out)) {
+    const fs::path tmp = dir / (flat + ".part" + std::to_string(std::random_device{}()));
+    const std::string cmd = "xz -dc '" + path + "' > '" + tmp.string() + "'";
+    if(std::system(cmd.c_str()) != 0) throw std::runtime_error("cannot decompress " + path);
+    fs::rename(tmp, out);
+  }
+  return out.string();
+}
+
+/// a fresh temporary folder for a test.
+inline std::string temporary_folder(const std::string& name)
+{
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("soup_topology_" + name + "_" + std::to_string(std::random_device{}()));
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+/// reads a mesh of the shared data folder as an exactly welded indexed soup.
+template <class Point>
+Soup_topology::IO::Soup_read_report read_data_mesh(const std::string& relative, std::vector<Point>& points,
+                                                   std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  return Soup_topology::IO::read_triangle_soup(data_file(relative), points, triangles);
+}
+
+/// every triangle written with its own three corners, as an STL export does.
+template <class Point>
+std::vector<std::array<Point, 3>> explode(const std::vector<Point>& points,
+                                          const std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  std::vector<std::array<Point, 3>> soup;
+  soup.reserve(triangles.size());
+  for(const auto& t : triangles) soup.push_back({points[t[0]], points[t[1]], points[t[2]]});
+  return soup;
+}
+
+/// counts, with a std::map over sorted vertex pairs, the edges used by 1 triangle and by more than 2.
+inline std::pair<std::size_t, std::size_t>
+count_border_and_non_manifold_edges(const std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  std::map<std::pair<std::size_t, std::size_t>, int> uses;
+  for(const auto& t : triangles)
+    for(int i = 0; i < 3; ++i) {
+      std::size_t a = t[i], b = t[(i + 1) % 3];
+      if(a > b) std::swap(a, b);
+      ++uses[{a, b}];
+    }
+  std::size_t border = 0, non_manifold = 0;
+  for(const auto& kv : uses) {
+    if(kv.second == 1) ++border;
+    if(kv.second > 2) ++non_manifold;
+  }
+  return {border, non_manifold};
+}
+
+/// counts edge-connected components with a union-find over a std::map of edges.
+inline std::size_t count_components(const std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  std::vector<std::size_t> parent(triangles.size());
+  for(std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto find = [&](std::size_t x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> first_user;
+  std::size_t count = triangles.size();
+  for(std::size_t t = 0; t < triangles.size(); ++t)
+    for(int i = 0; i < 3; ++i) {
+      std::size_t a = triangles[t][i], b = triangles[t][(i + 1) % 3];
+      if(a > b) std::swap(a, b);
+      auto ins = first_user.emplace(std::make_pair(a, b), t);
+      if(!ins.second) {
+        const std::size_t x = find(t), y = find(ins.first->second);
+        if(x != y) { parent[x] = y; --count; }
+      }
+    }
+  return count;
+}
+
+/// runs a shell command and returns its standard output and exit code.
+inline std::pair<std::string, int> run_command(const std::string& command)
+{
+  std::string output;
+  FILE* pipe = popen(command.c_str(), "r");
+  if(pipe == nullptr) throw std::runtime_error("cannot run " + command);
+  char buffer[4096];
+  std::size_t n;
+  while((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+  const int status = pclose(pipe);
+  return {output, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
+}
+
+/// the integer value of `"key": N` in a one-line JSON object (-1 if absent).
+inline long long json_integer(const std::string& json, const std::string& key)
+{
+  const std::string pattern = "\"" + key + "\": ";
+  const std::size_t at = json.find(pattern);
+  if(at == std::string::npos) return -1;
+  return std::atoll(json.c_str() + at + pattern.size());
+}
+
+/// `true`/`false` value of `"key": ...` in a one-line JSON object.
+inline bool json_bool(const std::string& json, const std::string& key)
+{
+  const std::string pattern = "\"" + key + "\": ";
+  const std::size_t at = json.find(pattern);
+  return at != std::string::npos && json.compare(at + pattern.size(), 4, "true") == 0;
+}
+
+} // namespace soup_test
+
+#endif // SOUP_TOPOLOGY_TEST_UTILITIES_H
