@@ -1,0 +1,1063 @@
+// Copyright (c) 2025 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// This file is part of Soup_topology, a header-only C++17 library that rebuilds the topology
+// of triangle soups.
+
+// The VRML 2.0 parser behind Soup_topology/IO/VRML.h. Include that header, not this one.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_VRML_PARSER_H
+#define SOUP_TOPOLOGY_INTERNAL_VRML_PARSER_H
+
+#include <Soup_topology/IO/VRML.h>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+namespace VRML {
+
+// The soup built by the parser, in plain doubles and indices; appended to the caller's ranges
+// only once the whole file has been read.
+struct Soup
+{
+  std::vector<double> xyz;
+  std::vector<std::array<std::size_t, 3>> triangles;
+};
+
+// Row-major 3x4 affine map.
+struct Affine
+{
+  double m[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  bool identity = true;
+
+  static Affine translation(const double t[3])
+  {
+    Affine a;
+    a.m[3] = t[0];
+    a.m[7] = t[1];
+    a.m[11] = t[2];
+    a.identity = (t[0] == 0 && t[1] == 0 && t[2] == 0);
+    return a;
+  }
+
+  static Affine scaling(const double s[3])
+  {
+    Affine a;
+    a.m[0] = s[0];
+    a.m[5] = s[1];
+    a.m[10] = s[2];
+    a.identity = (s[0] == 1 && s[1] == 1 && s[2] == 1);
+    return a;
+  }
+
+  // rotation of `angle` radians around the axis (x, y, z); identity for a null axis or angle
+  static Affine rotation(double x, double y, double z, double angle)
+  {
+    Affine a;
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if(len == 0 || angle == 0 || !std::isfinite(len))
+      return a;
+    x /= len;
+    y /= len;
+    z /= len;
+    const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
+    a.m[0] = t * x * x + c;     a.m[1] = t * x * y - s * z; a.m[2] = t * x * z + s * y;
+    a.m[4] = t * x * y + s * z; a.m[5] = t * y * y + c;     a.m[6] = t * y * z - s * x;
+    a.m[8] = t * x * z - s * y; a.m[9] = t * y * z + s * x; a.m[10] = t * z * z + c;
+    a.identity = false;
+    return a;
+  }
+
+  // this * b
+  Affine operator*(const Affine& b) const
+  {
+    if(identity)
+      return b;
+    if(b.identity)
+      return *this;
+    Affine r;
+    for(int i = 0; i < 3; ++i)
+    {
+      for(int j = 0; j < 4; ++j)
+      {
+        double v = m[4 * i] * b.m[j] + m[4 * i + 1] * b.m[4 + j] + m[4 * i + 2] * b.m[8 + j];
+        if(j == 3)
+          v += m[4 * i + 3];
+        r.m[4 * i + j] = v;
+      }
+    }
+    r.identity = false;
+    return r;
+  }
+
+  double determinant() const
+  {
+    return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8])
+         + m[2] * (m[4] * m[9] - m[5] * m[8]);
+  }
+
+  void apply(const double* p, double* out) const
+  {
+    out[0] = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3];
+    out[1] = m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7];
+    out[2] = m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11];
+  }
+};
+
+enum class Node_kind { SKIPPED, GROUP, SHAPE, INDEXED_FACE_SET, COORDINATE };
+
+struct Node
+{
+  Node_kind kind = Node_kind::SKIPPED;
+  std::string_view type;            // the node's type name as written
+  std::size_t line = 0;             // where the node starts
+  // GROUP
+  Affine local;
+  std::vector<std::size_t> children;
+  // SHAPE
+  std::size_t geometry = npos;
+  // INDEXED_FACE_SET
+  std::size_t coord = npos;
+  std::vector<std::int32_t> coord_index;
+  std::vector<std::pair<std::size_t, std::size_t>> index_lines; // (first position, line) at each line change
+  bool ccw = true;
+  // COORDINATE
+  std::vector<double> xyz;
+
+  static constexpr std::size_t npos = std::size_t(-1);
+
+  std::size_t line_of_index(std::size_t position) const
+  {
+    std::size_t result = line;
+    for(const auto& entry : index_lines) // few entries: one per line of the coordIndex field
+    {
+      if(entry.first > position)
+        break;
+      result = entry.second;
+    }
+    return result;
+  }
+};
+
+inline bool is_delimiter(char c)
+{
+  return static_cast<unsigned char>(c) <= ' ' || c == ',' || c == '#' || c == '{' || c == '}'
+      || c == '[' || c == ']' || c == '"';
+}
+
+inline bool starts_number(char c)
+{
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+}
+
+class Parser
+{
+  using Read_error = Soup_topology::IO::Read_error;
+  static constexpr std::size_t npos = Node::npos;
+  static constexpr std::size_t max_depth = 1000;
+
+public:
+  Parser(const char* begin, const char* end, const std::string& name,
+         const Soup_topology::IO::VRML_read_options& options,
+         Soup_topology::IO::VRML_read_result& result, Soup& soup)
+    : p_(begin), end_(end), name_(name), options_(options), result_(result), soup_(soup)
+  {}
+
+  void run()
+  {
+    read_header();
+    std::vector<std::size_t> roots;
+    for(;;)
+    {
+      skip_space();
+      if(p_ == end_)
+        break;
+      if(*p_ == '}' || *p_ == ']' || *p_ == '{' || *p_ == '[')
+        fail(std::string("unbalanced '") + *p_ + "' at the top level", line_);
+      const std::size_t line = line_;
+      const std::string_view word = read_word("a node");
+      if(skip_statement(word))
+        continue;
+      const std::size_t id = parse_node_statement(word, line, true);
+      if(id != npos)
+        roots.push_back(id);
+    }
+    for(std::size_t id : roots)
+      emit(id, Affine());
+    result_.number_of_points = soup_.xyz.size() / 3;
+    result_.number_of_triangles = soup_.triangles.size();
+  }
+
+private:
+  // ------------------------------------------------------------------ errors
+
+  [[noreturn]] void fail(const std::string& description, std::size_t line) const
+  {
+    throw Read_error(name_ + ":" + std::to_string(line) + ": " + description);
+  }
+
+  [[noreturn]] void fail_eof(const char* what, std::size_t open_line) const
+  {
+    std::string d = std::string("unexpected end of file while reading ") + what;
+    if(open_line != 0)
+      d += " (opened at line " + std::to_string(open_line) + ")";
+    fail(d, line_);
+  }
+
+  std::string quote_here() const
+  {
+    if(p_ == end_)
+      return "end of file";
+    const char* q = p_;
+    if(is_delimiter(*q))
+      return std::string("'") + *q + "'";
+    while(q != end_ && !is_delimiter(*q) && q - p_ < 40)
+      ++q;
+    return "'" + std::string(p_, q) + "'";
+  }
+
+  // ------------------------------------------------------------------ tokens
+
+  void read_header()
+  {
+    if(end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) // UTF-8 byte order mark
+      p_ += 3;
+    if(end_ - p_ >= 5 && std::memcmp(p_, "#VRML", 5) == 0)
+    {
+      const char* q = p_ + 5;
+      while(q != end_ && (*q == ' ' || *q == '\t'))
+        ++q;
+      if(!(end_ - q >= 4 && std::memcmp(q, "V2.0", 4) == 0))
+        fail("unsupported VRML version (only VRML 2.0 / VRML97 is read)", 1);
+    }
+  }
+
+  void skip_space()
+  {
+    while(p_ != end_)
+    {
+      const char c = *p_;
+      if(c == '\n')
+      {
+        ++line_;
+        ++p_;
+      }
+      else if(static_cast<unsigned char>(c) <= ' ' || c == ',')
+        ++p_;
+      else if(c == '#')
+      {
+        while(p_ != end_ && *p_ != '\n')
+          ++p_;
+      }
+      else
+        return;
+    }
+  }
+
+  // next non-space character, 0 at the end
+  char peek()
+  {
+    skip_space();
+    return p_ == end_ ? '\0' : *p_;
+  }
+
+  std::string_view read_word(const char* what, std::size_t open_line = 0)
+  {
+    skip_space();
+    if(p_ == end_)
+      fail_eof(what, open_line);
+    const char* b = p_;
+    while(p_ != end_ && !is_delimiter(*p_))
+      ++p_;
+    if(p_ == b)
+      fail(std::string("expected ") + what + ", found " + quote_here(), line_);
+    return std::string_view(b, static_cast<std::size_t>(p_ - b));
+  }
+
+  // the next word, not consumed (empty if the next token is not a word)
+  std::string_view peek_word()
+  {
+    skip_space();
+    const char* q = p_;
+    while(q != end_ && !is_delimiter(*q))
+      ++q;
+    return std::string_view(p_, static_cast<std::size_t>(q - p_));
+  }
+
+  void expect(char c, const char* what, std::size_t open_line)
+  {
+    skip_space();
+    if(p_ == end_)
+      fail_eof(what, open_line);
+    if(*p_ != c)
+      fail(std::string("expected '") + c + "' in " + what + ", found " + quote_here(), line_);
+    ++p_;
+  }
+
+  void skip_string()
+  {
+    const std::size_t open_line = line_;
+    ++p_; // opening quote
+    while(p_ != end_ && *p_ != '"')
+    {
+      if(*p_ == '\\' && p_ + 1 != end_)
+        ++p_;
+      if(*p_ == '\n')
+        ++line_;
+      ++p_;
+    }
+    if(p_ == end_)
+      fail_eof("a string", open_line);
+    ++p_;
+  }
+
+  // skips up to the bracket matching the one just consumed (`open`, at `open_line`), checking
+  // that brackets nest; `DEF name Type` met inside registers `name` as a skipped node
+  void skip_balanced(char open, std::size_t open_line)
+  {
+    std::vector<std::pair<char, std::size_t>> stack{{open, open_line}};
+    while(!stack.empty())
+    {
+      skip_space();
+      if(p_ == end_)
+        fail_eof(stack.back().first == '{' ? "a node body" : "a bracketed list", stack.back().second);
+      const char c = *p_;
+      if(c == '{' || c == '[')
+      {
+        stack.emplace_back(c, line_);
+        ++p_;
+      }
+      else if(c == '}' || c == ']')
+      {
+        const char expected = stack.back().first == '{' ? '}' : ']';
+        if(c != expected)
+          fail(std::string("unbalanced '") + c + "': '" + stack.back().first + "' opened at line "
+                 + std::to_string(stack.back().second) + " is closed by '" + c + "'",
+               line_);
+        stack.pop_back();
+        ++p_;
+      }
+      else if(c == '"')
+        skip_string();
+      else
+      {
+        const std::size_t line = line_;
+        const std::string_view word = read_word("a word");
+        if(word == "DEF")
+        {
+          const std::string_view name = read_word("a DEF name");
+          const std::string_view type = peek_word();
+          defs_[name] = new_node(Node_kind::SKIPPED, type.empty() ? name : type, line);
+        }
+      }
+    }
+  }
+
+  double read_double(const char* what)
+  {
+    skip_space();
+    if(p_ == end_)
+      fail_eof(what, 0);
+    const char* b = p_;
+    if(*b == '+')
+      ++b;
+    double v = 0;
+    const auto r = std::from_chars(b, end_, v);
+    if(r.ec != std::errc() || (r.ptr != end_ && !is_delimiter(*r.ptr)) || !std::isfinite(v))
+      fail(std::string("cannot read a number (") + what + ") from " + quote_here(), line_);
+    p_ = r.ptr;
+    return v;
+  }
+
+  std::int32_t read_int32(const char* what)
+  {
+    skip_space();
+    if(p_ == end_)
+      fail_eof(what, 0);
+    const char* b = p_;
+    bool negative = false;
+    if(*b == '+' || *b == '-')
+    {
+      negative = (*b == '-');
+      ++b;
+    }
+    int base = 10;
+    if(end_ - b > 2 && b[0] == '0' && (b[1] == 'x' || b[1] == 'X'))
+    {
+      base = 16;
+      b += 2;
+    }
+    std::int64_t v = 0;
+    const auto r = std::from_chars(b, end_, v, base);
+    if(r.ec != std::errc() || (r.ptr != end_ && !is_delimiter(*r.ptr)))
+      fail(std::string("cannot read an integer (") + what + ") from " + quote_here(), line_);
+    if(negative)
+      v = -v;
+    if(v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
+      fail(std::string("integer out of the 32-bit range (") + what + "): " + quote_here(), line_);
+    p_ = r.ptr;
+    return static_cast<std::int32_t>(v);
+  }
+
+  bool read_bool(const char* what)
+  {
+    skip_space();
+    const std::size_t line = line_;
+    const std::string_view w = read_word(what);
+    if(w == "TRUE")
+      return true;
+    if(w == "FALSE")
+      return false;
+    fail(std::string("expected TRUE or FALSE for ") + what + ", found '" + std::string(w) + "'", line);
+  }
+
+  // inside a list of numbers opened at `open_line`: a bracket here is an error
+  void check_list_item(std::size_t open_line) const
+  {
+    const char c = *p_;
+    if(c == '{' || c == '}' || c == '[')
+      fail(std::string("unbalanced '") + c + "' in a list of numbers ('[' opened at line "
+             + std::to_string(open_line) + ")",
+           line_);
+  }
+
+  // reads an MFFloat-like field of `tuple`-sized values: `[ a b c, ... ]` or a single value
+  void read_mf_double(std::vector<double>& out, std::size_t tuple, const char* what)
+  {
+    skip_space();
+    if(p_ != end_ && *p_ == '[')
+    {
+      const std::size_t open_line = line_;
+      ++p_;
+      const std::size_t start = out.size();
+      for(;;)
+      {
+        skip_space();
+        if(p_ == end_)
+          fail_eof(what, open_line);
+        if(*p_ == ']')
+        {
+          ++p_;
+          break;
+        }
+        check_list_item(open_line);
+        out.push_back(read_double(what));
+      }
+      if((out.size() - start) % tuple != 0)
+        fail(std::string(what) + ": " + std::to_string(out.size() - start)
+               + " numbers, not a multiple of " + std::to_string(tuple),
+             open_line);
+    }
+    else
+    {
+      for(std::size_t i = 0; i < tuple; ++i)
+        out.push_back(read_double(what));
+    }
+  }
+
+  void read_sf_doubles(double* out, std::size_t n, const char* what)
+  {
+    for(std::size_t i = 0; i < n; ++i)
+      out[i] = read_double(what);
+  }
+
+  void read_coord_index(Node& node)
+  {
+    skip_space();
+    auto note_line = [&]() {
+      if(node.index_lines.empty() || node.index_lines.back().second != line_)
+        node.index_lines.emplace_back(node.coord_index.size(), line_);
+    };
+    if(p_ != end_ && *p_ == '[')
+    {
+      const std::size_t open_line = line_;
+      ++p_;
+      for(;;)
+      {
+        skip_space();
+        if(p_ == end_)
+          fail_eof("coordIndex", open_line);
+        if(*p_ == ']')
+        {
+          ++p_;
+          break;
+        }
+        check_list_item(open_line);
+        note_line();
+        node.coord_index.push_back(read_int32("coordIndex"));
+      }
+    }
+    else
+    {
+      note_line();
+      node.coord_index.push_back(read_int32("coordIndex"));
+    }
+  }
+
+  // `ROUTE`, `PROTO` and `EXTERNPROTO` statements: skipped, counted; false for other words
+  bool skip_statement(std::string_view word)
+  {
+    if(word == "ROUTE")
+    {
+      read_word("a ROUTE source");
+      read_word("TO");
+      read_word("a ROUTE destination");
+    }
+    else if(word == "PROTO")
+    {
+      const std::size_t line = line_;
+      read_word("a PROTO name");
+      expect('[', "a PROTO interface", line);
+      skip_balanced('[', line_);
+      expect('{', "a PROTO body", line);
+      skip_balanced('{', line_);
+    }
+    else if(word == "EXTERNPROTO")
+    {
+      const std::size_t line = line_;
+      read_word("an EXTERNPROTO name");
+      expect('[', "an EXTERNPROTO interface", line);
+      skip_balanced('[', line_);
+      const char c = peek();
+      if(c == '[')
+      {
+        ++p_;
+        skip_balanced('[', line_);
+      }
+      else if(c == '"')
+        skip_string();
+      else
+        fail("expected the URL of an EXTERNPROTO, found " + quote_here(), line_);
+    }
+    else
+      return false;
+    ++result_.skipped_nodes[std::string(word)];
+    return true;
+  }
+
+  // ------------------------------------------------------------------ nodes
+
+  std::size_t new_node(Node_kind kind, std::string_view type, std::size_t line)
+  {
+    nodes_.emplace_back();
+    nodes_.back().kind = kind;
+    nodes_.back().type = type;
+    nodes_.back().line = line;
+    return nodes_.size() - 1;
+  }
+
+  // a node statement whose first word (`DEF`, `USE`, `NULL` or a type name) was read at `line`
+  std::size_t parse_node_statement(std::string_view word, std::size_t line, bool count_skipped)
+  {
+    if(word == "DEF")
+    {
+      const std::string_view name = read_word("a DEF name");
+      const std::size_t type_line = line_;
+      const std::string_view type = read_word("a node type after DEF");
+      const std::size_t id = parse_node(type, type_line, count_skipped);
+      defs_[name] = id;
+      return id;
+    }
+    if(word == "USE")
+    {
+      const std::string_view name = read_word("a USE name");
+      const auto it = defs_.find(name);
+      if(it == defs_.end())
+        fail("USE of the undefined name '" + std::string(name) + "'", line);
+      if(count_skipped && nodes_[it->second].kind == Node_kind::SKIPPED)
+        ++result_.skipped_nodes[std::string(nodes_[it->second].type)];
+      return it->second;
+    }
+    if(word == "NULL")
+      return npos;
+    return parse_node(word, line, count_skipped);
+  }
+
+  std::size_t parse_node_statement(bool count_skipped, const char* what)
+  {
+    skip_space();
+    const std::size_t word_line = line_;
+    const std::string_view word = read_word(what);
+    return parse_node_statement(word, word_line, count_skipped);
+  }
+
+  struct Depth_guard
+  {
+    std::size_t& depth;
+    Depth_guard(std::size_t& d, const std::string& name, std::size_t line) : depth(d)
+    {
+      if(++depth > max_depth)
+        throw Soup_topology::IO::Read_error(name + ":" + std::to_string(line) + ": nodes nested too deeply");
+    }
+    ~Depth_guard() { --depth; }
+  };
+
+  std::size_t parse_node(std::string_view type, std::size_t line, bool count_skipped)
+  {
+    Depth_guard guard(depth_, name_, line);
+    if(starts_number(type[0]) || type == "TRUE" || type == "FALSE")
+      fail("expected a node, found '" + std::string(type) + "'", line);
+    expect('{', ("the body of " + std::string(type)).c_str(), line);
+    const std::size_t open_line = line_;
+    if(type == "Transform" || type == "Group" || type == "Anchor" || type == "Collision")
+      return parse_group(type, line, type == "Transform");
+    if(type == "Shape")
+      return parse_shape(type, line);
+    if(type == "IndexedFaceSet")
+      return parse_indexed_face_set(type, line);
+    if(type == "Coordinate")
+      return parse_coordinate(type, line);
+    skip_balanced('{', open_line);
+    if(count_skipped)
+      ++result_.skipped_nodes[std::string(type)];
+    return new_node(Node_kind::SKIPPED, type, line);
+  }
+
+  // the fields of a node body up to its closing brace; `field(name)` reads the value of the
+  // fields it knows and returns true, the others are skipped
+  template <typename FieldReader>
+  void parse_body(std::string_view type, std::size_t open_line, const FieldReader& field)
+  {
+    for(;;)
+    {
+      skip_space();
+      if(p_ == end_)
+        fail_eof(("the body of " + std::string(type)).c_str(), open_line);
+      const char c = *p_;
+      if(c == '}')
+      {
+        ++p_;
+        return;
+      }
+      if(c == '{' || c == '[' || c == ']' || c == '"')
+        fail(std::string("unexpected '") + c + "' in the body of " + std::string(type)
+               + " (opened at line " + std::to_string(open_line) + "), expected a field name",
+             line_);
+      const std::string_view name = read_word("a field name");
+      if(skip_statement(name))
+        continue;
+      if(!field(name))
+        skip_field_value(name);
+    }
+  }
+
+  // skips the value of an unknown field
+  void skip_field_value(std::string_view field)
+  {
+    skip_space();
+    if(p_ == end_)
+      fail_eof(("the value of " + std::string(field)).c_str(), 0);
+    const char c = *p_;
+    if(c == '[')
+    {
+      ++p_;
+      skip_balanced('[', line_);
+      return;
+    }
+    if(c == '"')
+    {
+      skip_string();
+      return;
+    }
+    if(c == '{' || c == '}' || c == ']')
+      fail("missing value for the field '" + std::string(field) + "'", line_);
+    const std::string_view w = peek_word();
+    if(starts_number(w[0]) || w == "TRUE" || w == "FALSE")
+    {
+      // scalars: numbers, booleans (SFVec3f, SFRotation, SFBool, ...)
+      for(;;)
+      {
+        const std::string_view next = peek_word();
+        if(next.empty() || !(starts_number(next[0]) || next == "TRUE" || next == "FALSE"))
+          return;
+        p_ += next.size();
+      }
+    }
+    // an SFNode value
+    parse_node_statement(false, "a node");
+  }
+
+  // MFNode `children`: `[ node ... ]` or one node
+  void parse_children(std::size_t id)
+  {
+    skip_space();
+    if(p_ != end_ && *p_ == '[')
+    {
+      const std::size_t open_line = line_;
+      ++p_;
+      for(;;)
+      {
+        skip_space();
+        if(p_ == end_)
+          fail_eof("children", open_line);
+        if(*p_ == ']')
+        {
+          ++p_;
+          return;
+        }
+        if(*p_ == '[' || *p_ == '{' || *p_ == '}' || *p_ == '"')
+          fail("unexpected " + quote_here() + " in children (opened at line "
+                 + std::to_string(open_line) + ")",
+               line_);
+        const std::size_t line = line_;
+        const std::string_view word = read_word("a node");
+        if(skip_statement(word))
+          continue;
+        const std::size_t child = parse_node_statement(word, line, true);
+        if(child != npos)
+          nodes_[id].children.push_back(child);
+      }
+    }
+    const std::size_t child = parse_node_statement(true, "a node");
+    if(child != npos)
+      nodes_[id].children.push_back(child);
+  }
+
+  std::size_t parse_group(std::string_view type, std::size_t line, bool is_transform)
+  {
+    const std::size_t open_line = line_;
+    const std::size_t id = new_node(Node_kind::GROUP, type, line);
+    double translation[3] = {0, 0, 0}, center[3] = {0, 0, 0}, scale[3] = {1, 1, 1};
+    double rotation[4] = {0, 0, 1, 0}, scale_orientation[4] = {0, 0, 1, 0};
+    parse_body(type, open_line, [&](std::string_view f) {
+      if(f == "children")
+        parse_children(id);
+      else if(!is_transform)
+        return false;
+      else if(f == "translation")
+        read_sf_doubles(translation, 3, "translation");
+      else if(f == "rotation")
+        read_sf_doubles(rotation, 4, "rotation");
+      else if(f == "scale")
+        read_sf_doubles(scale, 3, "scale");
+      else if(f == "scaleOrientation")
+        read_sf_doubles(scale_orientation, 4, "scaleOrientation");
+      else if(f == "center")
+        read_sf_doubles(center, 3, "center");
+      else
+        return false;
+      return true;
+    });
+    if(is_transform)
+    {
+      // T * C * R * SR * S * SR^-1 * C^-1
+      const double minus_center[3] = {-center[0], -center[1], -center[2]};
+      const Affine sr = Affine::rotation(scale_orientation[0], scale_orientation[1],
+                                         scale_orientation[2], scale_orientation[3]);
+      const Affine sr_inverse = Affine::rotation(scale_orientation[0], scale_orientation[1],
+                                                 scale_orientation[2], -scale_orientation[3]);
+      nodes_[id].local = Affine::translation(translation) * Affine::translation(center)
+                       * Affine::rotation(rotation[0], rotation[1], rotation[2], rotation[3])
+                       * sr * Affine::scaling(scale) * sr_inverse
+                       * Affine::translation(minus_center);
+    }
+    return id;
+  }
+
+  std::size_t parse_shape(std::string_view type, std::size_t line)
+  {
+    const std::size_t open_line = line_;
+    const std::size_t id = new_node(Node_kind::SHAPE, type, line);
+    parse_body(type, open_line, [&](std::string_view f) {
+      if(f == "geometry")
+      {
+        const std::size_t g = parse_node_statement(true, "a geometry node");
+        nodes_[id].geometry = g;
+        return true;
+      }
+      if(f == "appearance")
+      {
+        parse_node_statement(true, "an appearance node");
+        return true;
+      }
+      return false;
+    });
+    return id;
+  }
+
+  std::size_t parse_indexed_face_set(std::string_view type, std::size_t line)
+  {
+    const std::size_t open_line = line_;
+    const std::size_t id = new_node(Node_kind::INDEXED_FACE_SET, type, line);
+    parse_body(type, open_line, [&](std::string_view f) {
+      if(f == "coord")
+      {
+        const std::size_t c_line = line_;
+        const std::size_t c = parse_node_statement(false, "a Coordinate node");
+        if(c != npos && nodes_[c].kind != Node_kind::COORDINATE)
+          fail("the coord of an IndexedFaceSet must be a Coordinate node, not "
+                 + std::string(nodes_[c].type),
+               c_line);
+        nodes_[id].coord = c;
+      }
+      else if(f == "coordIndex")
+        read_coord_index(nodes_[id]);
+      else if(f == "ccw")
+        nodes_[id].ccw = read_bool("ccw");
+      else
+        return false;
+      return true;
+    });
+    // every index must name a point of the coord
+    Node& node = nodes_[id];
+    const std::int64_t n = node.coord == npos
+                             ? 0 : static_cast<std::int64_t>(nodes_[node.coord].xyz.size() / 3);
+    for(std::size_t i = 0; i < node.coord_index.size(); ++i)
+    {
+      const std::int32_t v = node.coord_index[i];
+      if(v < -1 || v >= n)
+        fail("coordIndex " + std::to_string(v) + " out of range: the coord has "
+               + std::to_string(n) + " points",
+             node.line_of_index(i));
+    }
+    return id;
+  }
+
+  std::size_t parse_coordinate(std::string_view type, std::size_t line)
+  {
+    const std::size_t open_line = line_;
+    const std::size_t id = new_node(Node_kind::COORDINATE, type, line);
+    parse_body(type, open_line, [&](std::string_view f) {
+      if(f != "point")
+        return false;
+      read_mf_double(nodes_[id].xyz, 3, "point");
+      return true;
+    });
+    return id;
+  }
+
+  // ------------------------------------------------------------------ output
+
+  void emit(std::size_t id, const Affine& transform)
+  {
+    const Node& node = nodes_[id];
+    switch(node.kind)
+    {
+    case Node_kind::GROUP:
+    {
+      const Affine t = transform * node.local;
+      for(std::size_t child : node.children)
+        emit(child, t);
+      break;
+    }
+    case Node_kind::SHAPE:
+      if(node.geometry != npos && nodes_[node.geometry].kind == Node_kind::INDEXED_FACE_SET)
+        emit_indexed_face_set(nodes_[node.geometry], transform);
+      break;
+    case Node_kind::INDEXED_FACE_SET:
+    case Node_kind::COORDINATE:
+      // geometry outside a Shape: not rendered, so not read
+      ++result_.skipped_nodes[std::string(node.type) + " outside a Shape"];
+      break;
+    case Node_kind::SKIPPED:
+      break;
+    }
+  }
+
+  void emit_indexed_face_set(const Node& ifs, const Affine& transform)
+  {
+    const std::size_t shape = result_.number_of_shapes++;
+    const std::size_t base = soup_.xyz.size() / 3;
+    static const std::vector<double> no_points;
+    const std::vector<double>& xyz = ifs.coord == npos ? no_points : nodes_[ifs.coord].xyz;
+    if(transform.identity)
+      soup_.xyz.insert(soup_.xyz.end(), xyz.begin(), xyz.end());
+    else
+    {
+      const std::size_t old = soup_.xyz.size();
+      soup_.xyz.resize(old + xyz.size());
+      for(std::size_t i = 0; i < xyz.size(); i += 3)
+        transform.apply(&xyz[i], &soup_.xyz[old + i]);
+    }
+    const bool mirrored = !transform.identity && transform.determinant() < 0;
+    if(mirrored)
+      ++result_.number_of_mirrored_shapes;
+    const bool flip = (!ifs.ccw) != (mirrored && !options_.keep_mirrored_orientation);
+
+    const std::size_t first_triangle = soup_.triangles.size();
+    const std::vector<std::int32_t>& index = ifs.coord_index;
+    std::size_t begin = 0;
+    while(begin < index.size())
+    {
+      std::size_t end = begin;
+      while(end < index.size() && index[end] != -1)
+        ++end;
+      add_polygon(index.data() + begin, end - begin, base, xyz, flip); // "-1 -1": a short polygon
+      begin = end + 1;
+    }
+    result_.triangle_shape_ids.insert(result_.triangle_shape_ids.end(),
+                                      soup_.triangles.size() - first_triangle, shape);
+  }
+
+  void push_triangle(std::size_t a, std::size_t b, std::size_t c, bool flip)
+  {
+    if(flip)
+      soup_.triangles.push_back({a, c, b});
+    else
+      soup_.triangles.push_back({a, b, c});
+  }
+
+  void add_polygon(const std::int32_t* poly, std::size_t k, std::size_t base,
+                   const std::vector<double>& xyz, bool flip)
+  {
+    ++result_.number_of_polygons;
+    if(k < 3)
+    {
+      ++result_.number_of_short_polygons;
+      return;
+    }
+    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
+    if(k == 3)
+    {
+      push_triangle(at(0), at(1), at(2), flip);
+      return;
+    }
+    // project to the plane of the Newell normal, oriented so that the polygon turns
+    // counterclockwise
+    double n[3] = {0, 0, 0};
+    for(std::size_t i = 0; i < k; ++i)
+    {
+      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
+      const double* q = &xyz[3 * static_cast<std::size_t>(poly[(i + 1) % k])];
+      n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+      n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+      n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+    }
+    int axis = 0;
+    if(std::abs(n[1]) > std::abs(n[axis]))
+      axis = 1;
+    if(std::abs(n[2]) > std::abs(n[axis]))
+      axis = 2;
+    int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    if(n[axis] < 0)
+      std::swap(u, v);
+    uv_.resize(2 * k);
+    for(std::size_t i = 0; i < k; ++i)
+    {
+      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
+      uv_[2 * i] = p[u];
+      uv_[2 * i + 1] = p[v];
+    }
+    auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+      return (uv_[2 * b] - uv_[2 * a]) * (uv_[2 * c + 1] - uv_[2 * a + 1])
+           - (uv_[2 * b + 1] - uv_[2 * a + 1]) * (uv_[2 * c] - uv_[2 * a]);
+    };
+
+    // convex: no right turn, and the edge directions sweep around once (at most two sign
+    // changes of the u component)
+    bool convex = (n[axis] != 0);
+    int sign_changes = 0, last_sign = 0;
+    for(std::size_t i = 0; convex && i < k; ++i)
+    {
+      const std::size_t j = (i + 1) % k, l = (i + 2) % k;
+      if(turn(i, j, l) < 0)
+        convex = false;
+      const double du = uv_[2 * j] - uv_[2 * i];
+      const int s = (du > 0) - (du < 0);
+      if(s != 0)
+      {
+        if(last_sign != 0 && s != last_sign)
+          ++sign_changes;
+        last_sign = s;
+      }
+    }
+    if(convex && sign_changes > 2)
+      convex = false; // counted cyclically, a simple convex polygon has at most 2 (+1 at wrap)
+    if(n[axis] == 0)
+      convex = true; // degenerate (all corners collinear): nothing better than a fan
+
+    if(!convex)
+    {
+      ++result_.number_of_non_convex_polygons;
+      if(options_.non_convex_rule == Soup_topology::IO::Non_convex_polygon_rule::EAR_CLIPPING)
+      {
+        ear_clip(poly, k, base, flip, turn);
+        return;
+      }
+    }
+    for(std::size_t i = 1; i + 1 < k; ++i)
+      push_triangle(at(0), at(i), at(i + 1), flip);
+  }
+
+  template <typename Turn>
+  void ear_clip(const std::int32_t* poly, std::size_t k, std::size_t base, bool flip,
+                const Turn& turn)
+  {
+    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
+    auto same = [&](std::size_t a, std::size_t b) {
+      return uv_[2 * a] == uv_[2 * b] && uv_[2 * a + 1] == uv_[2 * b + 1];
+    };
+    std::vector<std::size_t>& ring = ring_;
+    ring.resize(k);
+    for(std::size_t i = 0; i < k; ++i)
+      ring[i] = i;
+    std::size_t cursor = 0, misses = 0;
+    while(ring.size() > 3)
+    {
+      const std::size_t m = ring.size();
+      const std::size_t ia = (cursor + m - 1) % m, ib = cursor % m, ic = (cursor + 1) % m;
+      const std::size_t a = ring[ia], b = ring[ib], c = ring[ic];
+      bool ear = turn(a, b, c) > 0;
+      for(std::size_t j = 0; ear && j < m; ++j)
+      {
+        const std::size_t q = ring[j];
+        if(q == a || q == b || q == c || same(q, a) || same(q, b) || same(q, c))
+          continue;
+        if(turn(a, b, q) >= 0 && turn(b, c, q) >= 0 && turn(c, a, q) >= 0)
+          ear = false;
+      }
+      if(ear)
+      {
+        push_triangle(at(a), at(b), at(c), flip);
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ib));
+        cursor = ib; // the next corner moved into this slot
+        misses = 0;
+      }
+      else
+      {
+        ++cursor;
+        if(++misses > m)
+        {
+          // no ear left (self-intersecting or degenerate rest): fan what remains
+          ++result_.number_of_ear_clipping_failures;
+          for(std::size_t i = 1; i + 1 < m; ++i)
+            push_triangle(at(ring[0]), at(ring[i]), at(ring[i + 1]), flip);
+          return;
+        }
+      }
+    }
+    push_triangle(at(ring[0]), at(ring[1]), at(ring[2]), flip);
+  }
+
+  const char* p_;
+  const char* end_;
+  const std::string& name_;
+  std::size_t line_ = 1;
+  std::size_t depth_ = 0;
+  const Soup_topology::IO::VRML_read_options& options_;
+  Soup_topology::IO::VRML_read_result& result_;
+  Soup& soup_;
+  std::vector<Node> nodes_;
+  std::unordered_map<std::string_view, std::size_t> defs_;
+  std::vector<double> uv_;
+  std::vector<std::size_t> ring_;
+};
+
+} // namespace VRML
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_VRML_PARSER_H
