@@ -1,0 +1,74 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Reading the tolerance from the named parameters: absolute (`snapping_tolerance`) or relative
+// to the bounding-box diagonal (`relative_tolerance`), validated once for every algorithm.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_TOLERANCE_H
+#define SOUP_TOPOLOGY_INTERNAL_TOLERANCE_H
+
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/parameters.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+
+namespace Soup_topology {
+namespace internal {
+
+/// the diagonal of the bounding box of the points, in double.
+template <class PointRange, class PointMap>
+double bounding_box_diagonal(const PointRange& points, const PointMap& pm)
+{
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  double hi[3] = {-lo[0], -lo[1], -lo[2]};
+  bool any = false;
+  for(const auto& e : points) {
+    const auto& p = get(pm, e);
+    const double c[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    for(int k = 0; k < 3; ++k) { lo[k] = std::min(lo[k], c[k]); hi[k] = std::max(hi[k], c[k]); }
+    any = true;
+  }
+  if(!any) return 0;
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/// the absolute tolerance given by `np`: `snapping_tolerance` if present, else
+/// `relative_tolerance` times the bounding-box diagonal, else 0.
+/// \throws Invalid_input if it is negative, NaN or infinite, or if both are given.
+template <class FT, class PointRange, class PointMap, class NamedParameters>
+FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedParameters& np)
+{
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  constexpr bool has_absolute = !is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value;
+  constexpr bool has_relative = !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value;
+  static_assert(!(has_absolute && has_relative), "give either snapping_tolerance or relative_tolerance, not both");
+  if constexpr(has_absolute) {
+    const FT eps = FT(get_parameter(np, CGAL::internal_np::snapping_tolerance));
+    const double e = CGAL::to_double(eps);
+    if(!(e >= 0) || !std::isfinite(e))
+      throw Invalid_input("the tolerance must be a finite number >= 0 (got " + std::to_string(e) + ")");
+    return eps;
+  } else if constexpr(has_relative) {
+    const double r = static_cast<double>(get_parameter(np, internal_np::relative_tolerance));
+    if(!(r >= 0) || !std::isfinite(r))
+      throw Invalid_input("the relative tolerance must be a finite number >= 0 (got " + std::to_string(r) + ")");
+    return FT(r * bounding_box_diagonal(points, pm));
+  } else {
+    return FT(0);
+  }
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_TOLERANCE_H
