@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -417,6 +418,39 @@ TEST(VRML, ErrorLeavesTheSoupUnchanged)
   EXPECT_THROW(ST::IO::read_VRML(in, points, triangles), ST::IO::Read_error);
   EXPECT_EQ(points.size(), 1u);
   EXPECT_EQ(triangles.size(), 1u);
+}
+
+TEST(VRML, DamagedFilesThrowReadErrorOrRead)
+{
+  // truncated and corrupted copies of a real file: each one is read or throws Read_error,
+  // nothing else (no crash, no other exception)
+  std::ifstream file(soup_test::data_file("cad/kicad/SOT-23.wrl"), std::ios::binary);
+  std::ostringstream buffer;
+  buffer << file.rdbuf();
+  const std::string original = buffer.str();
+  ASSERT_GT(original.size(), 1000u);
+  const std::string replacements = "{}[]#\"-1x,.\n";
+  std::size_t errors = 0, reads = 0;
+  for(std::size_t k = 0; k < 400; ++k)
+  {
+    std::string text = original;
+    const std::size_t at = (k * 7919u) % original.size();
+    if(k % 2 == 0)
+      text.resize(at);
+    else
+      text[at] = replacements[k % replacements.size()];
+    try
+    {
+      read_string(text);
+      ++reads;
+    }
+    catch(const ST::IO::Read_error&)
+    {
+      ++errors;
+    }
+  }
+  EXPECT_EQ(errors + reads, 400u);
+  EXPECT_GT(errors, 100u);
 }
 
 TEST(VRML, MissingFileThrows)
