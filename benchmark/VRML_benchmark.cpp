@@ -1,4 +1,4 @@
-// Copyright (c) 2025 The Soup_topology authors.
+// Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // Read time of the largest KiCad VRML file (Infineon_EasyPIM-2B, 194708 triangles) with

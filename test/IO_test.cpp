@@ -1,4 +1,4 @@
-// Copyright (c) 2025 The Soup_topology authors.
+// Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // Tests of the VRML reader (Soup_topology/IO/VRML.h) and of the triangle strip and fan adapters

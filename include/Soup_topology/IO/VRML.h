@@ -1,4 +1,4 @@
-// Copyright (c) 2025 The Soup_topology authors.
+// Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // This file is part of Soup_topology, a header-only C++17 library that rebuilds the topology
