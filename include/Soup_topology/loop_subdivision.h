@@ -1,0 +1,676 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Loop subdivision of an indexed triangle soup on its adjacency tables, and the limit positions
+// and tangents of Loop's scheme from the eigen-decomposition of the local subdivision matrix.
+
+#ifndef SOUP_TOPOLOGY_LOOP_SUBDIVISION_H
+#define SOUP_TOPOLOGY_LOOP_SUBDIVISION_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/subdivision_parameters.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Origin.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/number_utils.h>
+#include <CGAL/property_map.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// `beta` of Loop's vertex rule for a smooth vertex of valence `k`.
+inline double loop_beta_value(Loop_beta choice, std::size_t k)
+{
+  if(k == 0) return 0.;
+  const double dk = static_cast<double>(k);
+  if(choice == Loop_beta::warren) return k == 3 ? 3. / 16. : 3. / (8. * dk);
+  if(k == 6) return 1. / 16.;   // the regular case, exactly (the formula gives it up to rounding)
+  const double c = 3. / 8. + 0.25 * std::cos(2. * CGAL_PI / dk);
+  return (5. / 8. - c * c) / dk;
+}
+
+/// The role of a vertex in Loop's scheme.
+enum class Loop_vertex_kind : std::uint8_t
+{
+  smooth,  ///< no crease edge and a single fan of triangles: Loop's vertex rule
+  crease,  ///< exactly two crease (border or non-manifold) edges: the rule 1/8, 3/4, 1/8
+  corner   ///< anything else (isolated, one or more than two crease edges, a pinch): fixed
+};
+
+/// The edges of one level of subdivision: every triangle edge `3t + i` has an edge id; an edge
+/// remembers the first two triangle edges ("halves") that carry it and how many do (saturated
+/// at 3). An edge carried by exactly two halves is smooth, otherwise it is a crease.
+struct Loop_level
+{
+  using Index = std::uint32_t;
+  static constexpr Index none = static_cast<Index>(-1);
+
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<Index> edge_of;        // 3 per triangle
+  std::vector<Index> half1, half2;   // per edge
+  std::vector<std::uint8_t> count;   // per edge, saturated at 3
+  std::vector<Loop_vertex_kind> kind;
+  std::size_t number_of_edges = 0;
+
+  bool is_crease(Index e) const { return count[e] != 2; }
+  Index first_vertex(Index e) const { return triangles[half1[e] / 3][half1[e] % 3]; }
+  Index second_vertex(Index e) const { return triangles[half1[e] / 3][(half1[e] + 1) % 3]; }
+
+  void compute_halves()
+  {
+    half1.assign(number_of_edges, none);
+    half2.assign(number_of_edges, none);
+    count.assign(number_of_edges, 0);
+    for(std::size_t h = 0; h < edge_of.size(); ++h) {
+      const Index e = edge_of[h];
+      std::uint8_t& c = count[e];
+      if(c == 0) half1[e] = static_cast<Index>(h);
+      else if(c == 1) half2[e] = static_cast<Index>(h);
+      if(c < 3) ++c;
+    }
+  }
+
+  /// level 0: the edge ids from the edge-neighbour table, the vertex kinds from the crease
+  /// edges and a walk around each vertex.
+  void initialize(const Adjacency_tables& adj)
+  {
+    using size_type = Adjacency_tables::size_type;
+    const std::size_t m = adj.number_of_triangles(), n = adj.number_of_vertices();
+    triangles.assign(adj.triangles().begin(), adj.triangles().end());
+    edge_of.assign(3 * m, none);
+    number_of_edges = 0;
+    std::vector<size_type> around;
+    for(size_type t = 0; t < m; ++t)
+      for(int i = 0; i < 3; ++i) {
+        const size_type u = adj.neighbor(t, i);
+        size_type owner = t;
+        if(u == Adjacency_tables::non_manifold_edge) {
+          around.clear();
+          adj.triangles_around_edge(t, i, std::back_inserter(around));
+          owner = std::min(t, around.front());
+        } else if(u != Adjacency_tables::border_edge) {
+          owner = std::min(t, u);
+        }
+        Index& id = edge_of[3 * std::size_t(t) + std::size_t(i)];
+        if(owner == t) {
+          id = static_cast<Index>(number_of_edges++);
+        } else {
+          const int j = adj.edge_index(owner, adj.vertex(t, i), adj.vertex(t, (i + 1) % 3));
+          id = edge_of[3 * std::size_t(owner) + std::size_t(j)];
+        }
+      }
+    compute_halves();
+
+    std::vector<std::uint8_t> creases(n, 0);
+    for(Index e = 0; e < number_of_edges; ++e)
+      if(is_crease(e))
+        for(Index v : {first_vertex(e), second_vertex(e)})
+          if(creases[v] < 3) ++creases[v];
+    kind.assign(n, Loop_vertex_kind::corner);
+    for(size_type v = 0; v < n; ++v) {
+      if(adj.degree(v) == 0) continue;
+      if(creases[v] == 2) kind[v] = Loop_vertex_kind::crease;
+      else if(creases[v] == 0 && is_single_fan(adj, v)) kind[v] = Loop_vertex_kind::smooth;
+    }
+  }
+
+  /// `true` if walking across the (manifold) edges around `v` visits all its triangles.
+  static bool is_single_fan(const Adjacency_tables& adj, Adjacency_tables::size_type v)
+  {
+    std::size_t visited = 0;
+    walk_ring(adj, v, [&](Adjacency_tables::size_type) { ++visited; });
+    return visited == adj.degree(v);
+  }
+
+  /// calls `f(q)` for the ring vertices `q_0, q_1, ...` of `v` in the order of the fan of its
+  /// first triangle `(v, q_0, q_1)`, until the walk returns to that triangle or meets a
+  /// border or non-manifold edge. Returns after at most `degree(v)` calls.
+  template <class F>
+  static void walk_ring(const Adjacency_tables& adj, Adjacency_tables::size_type v, F f)
+  {
+    using size_type = Adjacency_tables::size_type;
+    const size_type t0 = adj.triangles_around_vertex(v)[0];
+    size_type t = t0;
+    const int iv = adj.local_index(t0, v);
+    size_type q = adj.vertex(t0, (iv + 1) % 3);
+    for(std::size_t step = 0; step < adj.degree(v); ++step) {
+      f(q);
+      // the third vertex of t, then the neighbour across (v, third)
+      const int iq = adj.local_index(t, q), jv = adj.local_index(t, v);
+      const size_type next = adj.vertex(t, 3 - iq - jv);
+      const size_type u = adj.neighbor(t, adj.edge_index(t, v, next));
+      q = next;
+      if(u >= Adjacency_tables::non_manifold_edge || u == t0) return;
+      t = u;
+    }
+  }
+
+  /// the next level: triangle `t = (v0, v1, v2)` with edge points `e0, e1, e2` (edge `i` =
+  /// `(v_i, v_{i+1})`) becomes `4t + k = (v_k, e_k, e_{k+2})` for `k = 0, 1, 2` and
+  /// `4t + 3 = (e0, e1, e2)`; vertex `v` keeps its index, the point of edge `e` is `n + e`.
+  /// The halves of edge `e` become edges `2e` (at its first vertex) and `2e + 1`; the three
+  /// inner edges of `t` are `2E + 3t + k`.
+  void refine(std::size_t n, bool with_edges)
+  {
+    const std::size_t m = triangles.size(), E = number_of_edges;
+    std::vector<std::array<Index, 3>> children(4 * m);
+    std::vector<Index> child_edges;
+    if(with_edges) child_edges.resize(12 * m);
+    for(std::size_t t = 0; t < m; ++t) {
+      const std::array<Index, 3> v = triangles[t];
+      const Index e[3] = {static_cast<Index>(n + edge_of[3 * t]), static_cast<Index>(n + edge_of[3 * t + 1]),
+                          static_cast<Index>(n + edge_of[3 * t + 2])};
+      for(int k = 0; k < 3; ++k) children[4 * t + std::size_t(k)] = {v[k], e[k], e[(k + 2) % 3]};
+      children[4 * t + 3] = {e[0], e[1], e[2]};
+      if(!with_edges) continue;
+      Index* ce = child_edges.data() + 12 * t;
+      const Index inner = static_cast<Index>(2 * E + 3 * t);
+      for(int k = 0; k < 3; ++k) {
+        const Index ek = edge_of[3 * t + std::size_t(k)], ep = edge_of[3 * t + std::size_t((k + 2) % 3)];
+        ce[3 * k + 0] = 2 * ek + (first_vertex(ek) == v[k] ? 0 : 1);
+        ce[3 * k + 1] = inner + Index(k);
+        ce[3 * k + 2] = 2 * ep + (first_vertex(ep) == v[k] ? 0 : 1);
+      }
+      ce[9] = inner + 1;
+      ce[10] = inner + 2;
+      ce[11] = inner + 0;
+    }
+    if(with_edges) {
+      kind.reserve(n + E);
+      for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::crease : Loop_vertex_kind::smooth);
+      edge_of.swap(child_edges);
+      number_of_edges = 2 * E + 3 * m;
+      triangles.swap(children);
+      compute_halves();
+    } else {
+      triangles.swap(children);
+      edge_of.clear();
+      number_of_edges = 0;
+    }
+  }
+};
+
+/// One level of Loop's rules: `out` receives the `n` moved vertices then the `E` edge points.
+template <class GT>
+void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
+                 std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
+{
+  using FT = typename GT::FT;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using Index = Loop_level::Index;
+  auto to_vector = gt.construct_vector_3_object();
+  auto add = gt.construct_sum_of_vectors_3_object();
+  auto scale = gt.construct_scaled_vector_3_object();
+  auto translate = gt.construct_translated_point_3_object();
+  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
+  auto vec = [&](Index v) { return to_vector(origin, in[v]); };
+
+  const std::size_t n = in.size(), E = level.number_of_edges;
+  out.resize(n + E);
+  std::vector<Vector> ring(n, CGAL::NULL_VECTOR);
+  std::vector<Index> valence(n, 0);
+  const FT three(3), eighth(0.125), half(0.5);
+  for(Index e = 0; e < E; ++e) {
+    const Index h = level.half1[e];
+    const std::array<Index, 3>& tr = level.triangles[h / 3];
+    const Index i = h % 3;
+    const Index a = tr[i], b = tr[(i + 1) % 3];
+    const Vector va = vec(a), vb = vec(b);
+    if(level.is_crease(e)) {
+      out[n + e] = translate(origin, scale(add(va, vb), half));
+      if(level.kind[a] == Loop_vertex_kind::crease) ring[a] = add(ring[a], vb);
+      if(level.kind[b] == Loop_vertex_kind::crease) ring[b] = add(ring[b], va);
+    } else {
+      const Index h2 = level.half2[e];
+      const Index c = tr[(i + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
+      out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
+      if(level.kind[a] == Loop_vertex_kind::smooth) { ring[a] = add(ring[a], vb); ++valence[a]; }
+      if(level.kind[b] == Loop_vertex_kind::smooth) { ring[b] = add(ring[b], va); ++valence[b]; }
+    }
+  }
+  std::vector<double> betas;
+  const FT three_quarters(0.75);
+  for(Index v = 0; v < n; ++v) {
+    switch(level.kind[v]) {
+    case Loop_vertex_kind::smooth: {
+      const std::size_t k = valence[v];
+      if(k >= betas.size()) {
+        const std::size_t old = betas.size();
+        betas.resize(k + 1);
+        for(std::size_t j = old; j <= k; ++j) betas[j] = loop_beta_value(choice, j);
+      }
+      const FT beta(betas[k]);
+      const FT centre(1. - double(k) * betas[k]);
+      out[v] = translate(origin, add(scale(vec(v), centre), scale(ring[v], beta)));
+      break;
+    }
+    case Loop_vertex_kind::crease:
+      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(ring[v], eighth)));
+      break;
+    default:
+      out[v] = in[v];
+    }
+  }
+}
+
+template <class PointRange, class NamedParameters>
+struct Loop_np_helper
+{
+  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
+  using Point = typename boost::property_traits<Point_map>::value_type;
+  using Default_traits = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Geom_traits = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t,
+                                                                         NamedParameters, Default_traits>::type;
+};
+
+/// The local subdivision matrix of a smooth vertex of valence `k` acting on `(p, q_0, ...,
+/// q_{k-1})` (the vertex then its ring in fan order): row 0 is the vertex rule
+/// `(1 - k beta, beta, ..., beta)`, row `1 + i` the edge rule of edge `(p, q_i)`:
+/// `3/8 p + 3/8 q_i + 1/8 q_{i-1} + 1/8 q_{i+1}`.
+inline Eigen::MatrixXd loop_subdivision_matrix(std::size_t k, double beta)
+{
+  const Eigen::Index K = static_cast<Eigen::Index>(k);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(K + 1, K + 1);
+  M(0, 0) = 1. - double(k) * beta;
+  for(Eigen::Index i = 0; i < K; ++i) {
+    M(0, 1 + i) = beta;
+    M(1 + i, 0) += 3. / 8.;
+    M(1 + i, 1 + i) += 3. / 8.;
+    M(1 + i, 1 + (i + 1) % K) += 1. / 8.;
+    M(1 + i, 1 + (i + K - 1) % K) += 1. / 8.;
+  }
+  return M;
+}
+
+/// The local subdivision matrix of a crease vertex acting on `(p, c_0, c_1)` (the vertex and
+/// its two crease neighbours): `p' = 3/4 p + 1/8 (c_0 + c_1)`, `c_i' = (p + c_i) / 2`.
+inline Eigen::MatrixXd crease_subdivision_matrix()
+{
+  Eigen::MatrixXd M(3, 3);
+  M << 0.75, 0.125, 0.125,
+       0.5, 0.5, 0.,
+       0.5, 0., 0.5;
+  return M;
+}
+
+/// What the eigen-analysis of a local subdivision matrix gives.
+struct Loop_eigen_analysis
+{
+  Eigen::VectorXd eigenvalues;   ///< real parts, by decreasing modulus
+  Eigen::VectorXd limit;         ///< left eigenvector of 1, entries summing to 1: the limit mask
+  Eigen::VectorXd tangent1;      ///< first subdominant left eigenvector (see `analyse_subdivision_matrix()`)
+  Eigen::VectorXd tangent2;      ///< second one (empty for a crease matrix)
+};
+
+/// eigen-analysis of `M` (a smooth matrix when `pair` is true, a crease matrix otherwise).
+/// Checks that 1 is a simple and dominant eigenvalue, and that the subdominant eigenvalue is a
+/// real pair of equal values (smooth) or simple (crease) strictly above the others in modulus;
+/// throws `std::domain_error` naming the failing property otherwise.
+///
+/// The limit mask is the left eigenvector of eigenvalue 1 normalised to a sum of 1. For a smooth
+/// matrix, the left eigenspace of the subdominant pair is two-dimensional; its canonical basis
+/// is `tangent2`, the element with a zero entry on `q_0` and a positive one on `q_1`, and
+/// `tangent1`, the element orthogonal to it with entry 1 on `q_0`, `tangent2` scaled to the
+/// same norm. (For Loop's scheme these are `cos(2 pi i / k)` and `sin(2 pi i / k)` on `q_i`.)
+/// For a crease matrix `tangent1` is the left eigenvector of 1/2 with entry 1 on `c_0`.
+inline Loop_eigen_analysis analyse_subdivision_matrix(const Eigen::MatrixXd& M, bool pair, const std::string& what)
+{
+  const Eigen::Index N = M.rows();
+  const double tol = 1e-9;
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(M, false);
+  if(solver.info() != Eigen::Success) throw std::domain_error(what + ": the eigen-decomposition failed");
+  Eigen::VectorXcd lambda = solver.eigenvalues();
+  std::vector<std::complex<double>> sorted(lambda.data(), lambda.data() + N);
+  std::sort(sorted.begin(), sorted.end(), [](const std::complex<double>& a, const std::complex<double>& b) {
+    return std::abs(a) > std::abs(b) || (std::abs(a) == std::abs(b) && a.real() > b.real());
+  });
+  Loop_eigen_analysis result;
+  result.eigenvalues.resize(N);
+  for(Eigen::Index i = 0; i < N; ++i) result.eigenvalues(i) = sorted[std::size_t(i)].real();
+  auto text = [](const std::complex<double>& z) { return std::to_string(z.real()) + (std::abs(z.imag()) > 0 ? "+" + std::to_string(z.imag()) + "i" : std::string()); };
+  if(std::abs(sorted[0] - 1.) > tol)
+    throw std::domain_error(what + ": the dominant eigenvalue is " + text(sorted[0]) + ", not 1 (no convergence)");
+  if(N > 1 && std::abs(sorted[1]) > 1. - tol)
+    throw std::domain_error(what + ": the eigenvalue 1 is not simple and dominant (next eigenvalue " + text(sorted[1]) + ")");
+  const std::size_t sub = pair ? 2 : 1;
+  if(std::size_t(N) < 1 + sub)
+    throw std::domain_error(what + ": the matrix is too small for a subdominant eigenvalue");
+  if(pair) {
+    if(std::abs(sorted[1] - sorted[2]) > tol || std::abs(sorted[1].imag()) > tol || std::abs(sorted[2].imag()) > tol)
+      throw std::domain_error(what + ": the subdominant eigenvalues " + text(sorted[1]) + " and " + text(sorted[2]) +
+                              " are not an equal real pair");
+  } else if(std::abs(sorted[1].imag()) > tol) {
+    throw std::domain_error(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not real");
+  }
+  if(std::size_t(N) > 1 + sub && std::abs(sorted[1 + sub]) > std::abs(sorted[1]) - tol)
+    throw std::domain_error(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not strictly above " +
+                            text(sorted[1 + sub]) + " in modulus");
+
+  // Left eigenvectors: the null spaces of M^T - lambda I, from the singular value decomposition.
+  auto null_space = [&](double value, Eigen::Index dimension) {
+    const Eigen::MatrixXd A = M.transpose() - value * Eigen::MatrixXd::Identity(N, N);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+    const Eigen::VectorXd& s = svd.singularValues();   // decreasing
+    for(Eigen::Index i = N - dimension; i < N; ++i)
+      if(s(i) > tol) throw std::domain_error(what + ": no left eigenvector for eigenvalue " + std::to_string(value));
+    if(N - dimension - 1 >= 0 && s(N - dimension - 1) < tol)
+      throw std::domain_error(what + ": the eigenspace of " + std::to_string(value) + " is larger than expected");
+    return Eigen::MatrixXd(svd.matrixV().rightCols(dimension));
+  };
+  result.limit = null_space(1., 1).col(0);
+  result.limit /= result.limit.sum();
+  if(pair) {
+    const double mu = 0.5 * (sorted[1].real() + sorted[2].real());
+    const Eigen::MatrixXd B = null_space(mu, 2);
+    Eigen::VectorXd s = B.col(0) * B(1, 1) - B.col(1) * B(1, 0);   // zero entry on q_0
+    if(s.norm() < tol) throw std::domain_error(what + ": degenerate subdominant eigenspace");
+    s /= s.norm();
+    const Eigen::Index j = std::abs(B.col(0).dot(s)) < std::abs(B.col(1).dot(s)) ? 0 : 1;
+    Eigen::VectorXd c = B.col(j);
+    c -= c.dot(s) * s;
+    if(std::abs(c(1)) < tol) throw std::domain_error(what + ": degenerate subdominant eigenspace");
+    c /= c(1);
+    s *= c.norm();
+    if(s(2) < 0) s = -s;
+    result.tangent1 = c;
+    result.tangent2 = s;
+  } else {
+    Eigen::VectorXd c = null_space(sorted[1].real(), 1).col(0);
+    if(std::abs(c(1)) < tol) throw std::domain_error(what + ": degenerate subdominant eigenvector");
+    result.tangent1 = c / c(1);
+  }
+  return result;
+}
+
+/// The per-valence cache of the eigen-analysis used by the limit functions.
+class Loop_mask_cache
+{
+public:
+  explicit Loop_mask_cache(Loop_beta choice) : choice_(choice) {}
+  const Loop_eigen_analysis& smooth(std::size_t k)
+  {
+    if(k >= smooth_.size()) smooth_.resize(k + 1);
+    if(!smooth_[k])
+      smooth_[k] = std::make_unique<Loop_eigen_analysis>(analyse_subdivision_matrix(
+        loop_subdivision_matrix(k, loop_beta_value(choice_, k)), true,
+        "Loop subdivision matrix of valence " + std::to_string(k)));
+    return *smooth_[k];
+  }
+  const Loop_eigen_analysis& crease()
+  {
+    if(!crease_)
+      crease_ = std::make_unique<Loop_eigen_analysis>(
+        analyse_subdivision_matrix(crease_subdivision_matrix(), false, "crease subdivision matrix"));
+    return *crease_;
+  }
+private:
+  Loop_beta choice_;
+  std::vector<std::unique_ptr<Loop_eigen_analysis>> smooth_;
+  std::unique_ptr<Loop_eigen_analysis> crease_;
+};
+
+/// The shared body of `loop_limit_points()` and `loop_limit_tangents()`: calls
+/// `f(v, kind, ring, weights)` for every vertex, `ring` the indices (vertex first) the weights apply to.
+template <class PointRange, class TriangleRange, class F>
+void for_each_limit_stencil(const PointRange& points, const TriangleRange& triangles, Loop_beta choice, F f)
+{
+  using Index = Loop_level::Index;
+  const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
+  const Adjacency_tables adj(triangles, n);
+  Loop_level level;
+  level.initialize(adj);
+  // the two crease neighbours of every crease vertex, in edge order
+  std::vector<std::array<Index, 2>> crease_ring(n, {Loop_level::none, Loop_level::none});
+  for(Index e = 0; e < level.number_of_edges; ++e) {
+    if(!level.is_crease(e)) continue;
+    const Index a = level.first_vertex(e), b = level.second_vertex(e);
+    (crease_ring[a][0] == Loop_level::none ? crease_ring[a][0] : crease_ring[a][1]) = b;
+    (crease_ring[b][0] == Loop_level::none ? crease_ring[b][0] : crease_ring[b][1]) = a;
+  }
+  Loop_mask_cache cache(choice);
+  std::vector<Index> ring;
+  for(Index v = 0; v < n; ++v) {
+    ring.clear();
+    ring.push_back(v);
+    switch(level.kind[v]) {
+    case Loop_vertex_kind::smooth:
+      Loop_level::walk_ring(adj, v, [&](Index q) { ring.push_back(q); });
+      f(v, Loop_vertex_kind::smooth, ring, cache.smooth(ring.size() - 1));
+      break;
+    case Loop_vertex_kind::crease:
+      ring.push_back(crease_ring[v][0]);
+      ring.push_back(crease_ring[v][1]);
+      f(v, Loop_vertex_kind::crease, ring, cache.crease());
+      break;
+    default:
+      f(v, Loop_vertex_kind::corner, ring, cache.crease());
+    }
+  }
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologySubdivision
+/// \brief subdivides the indexed triangle soup `(points, triangles)` in place with Loop's scheme.
+///
+/// Each level splits every triangle `t = (v0, v1, v2)` into four, `(v0, e0, e2)`, `(e0, v1, e1)`,
+/// `(e2, e1, v2)` and `(e0, e1, e2)` at indices `4t` to `4t + 3`, where `e_i` is the new point of
+/// edge `i = (v_i, v_{i+1})` (orientation is kept). The old points keep their indices (and move);
+/// the edge points are appended, one per edge of the adjacency tables (an edge shared by two
+/// triangles gets one point). The rules:
+/// - **smooth edge** (exactly two triangles): `3/8 (a + b) + 1/8 (c + d)`, `c` and `d` the
+///   opposite vertices;
+/// - **crease edge** (a border edge, or a non-manifold edge of three or more triangles): the
+///   midpoint `1/2 (a + b)`;
+/// - **smooth vertex** (no crease edge and a single fan of triangles, valence `k`):
+///   `(1 - k beta) p + beta sum(q_i)`, with `beta` chosen by `loop_beta`;
+/// - **crease vertex** (exactly two crease edges, to `c_0` and `c_1`, whatever its fans:
+///   a border vertex, or a vertex inside a non-manifold seam): `3/4 p + 1/8 (c_0 + c_1)`;
+/// - **corner** (one or more than two crease edges, no crease edge but several fans (a pinch),
+///   or isolated): fixed.
+///
+/// The smooth and border rules are those of `CGAL::Subdivision_method_3::Loop_subdivision` for
+/// `Loop_beta::loop`. Only the first level builds `Adjacency_tables`: the edges of the next level
+/// are derived from the current ones in constant time per triangle, and the vertex kinds are
+/// inherited (an edge point is smooth on a smooth edge, a crease vertex on a crease edge).
+/// Linear time and memory per level.
+///
+/// \tparam PointRange a resizable random-access container (`std::vector`) whose value type is
+///         default constructible; its points are read and written through `point_map`
+/// \tparam TriangleRange a `std::vector`-like container of triangles (`std::array<std::size_t,3>`,
+///         `std::vector<int>`, ...)
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{number_of_iterations} \cgalParamType{unsigned int} \cgalParamDefault{1} \cgalParamNEnd
+///   \cgalParamNBegin{loop_beta} \cgalParamType{`Soup_topology::Loop_beta`} \cgalParamDefault{`Loop_beta::loop`} \cgalParamNEnd
+///   \cgalParamNBegin{output_adjacency_tables} \cgalParamType{`Adjacency_tables*`}
+///     \cgalParamDescription{if not null, receives the tables of the result (built from the result's
+///     triangles, linear time)} \cgalParamDefault{`nullptr`} \cgalParamNEnd
+///   \cgalParamNBegin{point_map} \cgalParamType{a model of `ReadWritePropertyMap` from the value type
+///     of `PointRange` to `Point_3`} \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \throws Invalid_input for a face that is not a triangle, a repeated or out-of-range index or a
+///         non-finite coordinate; `points` and `triangles` are unchanged then.
+/// \sa `loop_limit_points()`, `loop_limit_tangents()`
+template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
+void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
+  using GT = typename Helper::Geom_traits;
+  using Point = typename GT::Point_3;
+  using Face = typename TriangleRange::value_type;
+  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::type;
+
+  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const unsigned int iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 1u);
+  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
+  Adjacency_tables* tables = choose_parameter(get_parameter(np, internal_np::output_adjacency_tables),
+                                              static_cast<Adjacency_tables*>(nullptr));
+
+  const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
+  internal::check_finite_points(points, point_map);
+  const Adjacency_tables adj(triangles, n);   // validates the triangles
+  std::vector<Point> current;
+  current.reserve(n);
+  for(const auto& p : points) current.push_back(get(point_map, p));
+  if(iterations > 0) {
+    internal::Loop_level level;
+    level.initialize(adj);
+    std::vector<Point> next;
+    for(unsigned int it = 0; it < iterations; ++it) {
+      const std::uint64_t size = std::uint64_t(current.size()) + level.number_of_edges;
+      if(size >= std::uint64_t(Adjacency_tables::non_manifold_edge) ||
+         4 * std::uint64_t(level.triangles.size()) >= std::uint64_t(Adjacency_tables::non_manifold_edge))
+        throw Invalid_input("loop_subdivision: level " + std::to_string(it + 1) + " would exceed 32-bit indices");
+      internal::loop_smooth(level, current, next, choice, gt);
+      level.refine(current.size(), it + 1 < iterations);
+      current.swap(next);
+    }
+    // Write back: nothing above modified the caller's containers.
+    TriangleRange result;
+    result.reserve(level.triangles.size());
+    for(const auto& t : level.triangles) result.push_back(internal::make_triangle<Face>(t[0], t[1], t[2]));
+    triangles.swap(result);
+    points.resize(current.size());
+    std::size_t i = 0;
+    for(auto& p : points) put(point_map, p, current[i++]);
+  }
+  if(tables != nullptr) *tables = Adjacency_tables(triangles, current.size());
+}
+
+/// \ingroup PkgSoupTopologySubdivision
+/// \brief returns the limit position under Loop's scheme of every point of `points`, in input order.
+///
+/// The limit mask of each vertex is the left eigenvector of eigenvalue 1 of its local subdivision
+/// matrix, computed with Eigen once per valence and normalised to a sum of 1:
+/// - smooth vertex of valence `k`: the `(k + 1) x (k + 1)` matrix of `internal::loop_subdivision_matrix()`,
+///   whose mask is `(1 - k chi) p + chi sum(q_i)`, `chi = 1 / (3 / (8 beta) + k)`;
+/// - crease vertex (see `loop_subdivision()`): the 3 x 3 matrix of the crease curve (a cubic
+///   B-spline), mask `2/3 p + 1/6 (c_0 + c_1)`;
+/// - corner: the point itself.
+///
+/// Parameters, bad input and the vertex kinds are those of `loop_subdivision()` (without
+/// `number_of_iterations` and `output_adjacency_tables`).
+/// \throws std::domain_error if a local matrix has not 1 as a simple dominant eigenvalue followed
+///         by an equal real subdominant pair (it never happens for `Loop_beta::loop` and `warren`).
+template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
+std::vector<typename internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>::Geom_traits::Point_3>
+loop_limit_points(const PointRange& points, const TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
+  using GT = typename Helper::Geom_traits;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using FT = typename GT::FT;
+  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::const_type;
+
+  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
+  internal::check_finite_points(points, point_map);
+  auto to_vector = gt.construct_vector_3_object();
+  auto add = gt.construct_sum_of_vectors_3_object();
+  auto scale = gt.construct_scaled_vector_3_object();
+  auto translate = gt.construct_translated_point_3_object();
+  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
+
+  std::vector<Point> input;
+  for(const auto& p : points) input.push_back(get(point_map, p));
+  std::vector<Point> result(input.size());
+  internal::for_each_limit_stencil(points, triangles, choice,
+    [&](std::size_t v, internal::Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring,
+        const internal::Loop_eigen_analysis& a) {
+      if(kind == internal::Loop_vertex_kind::corner) { result[v] = input[v]; return; }
+      Vector sum = CGAL::NULL_VECTOR;
+      for(std::size_t i = 0; i < ring.size(); ++i)
+        sum = add(sum, scale(to_vector(origin, input[ring[i]]), FT(a.limit(Eigen::Index(i)))));
+      result[v] = translate(origin, sum);
+    });
+  return result;
+}
+
+/// \ingroup PkgSoupTopologySubdivision
+/// \brief returns two tangent vectors of the Loop limit surface at every point of `points`, in input order.
+///
+/// At a smooth vertex of valence `k` they are the subdominant left eigenvectors of its local
+/// subdivision matrix applied to its ring `(p, q_0, ..., q_{k-1})` (in the fan order of its
+/// first triangle, so `t_1 x t_2` points to the side its orientation sees as outside). The
+/// eigenspace is two-dimensional; its canonical basis is described in
+/// `internal::analyse_subdivision_matrix()` and equals `t_1 = sum cos(2 pi i / k) q_i`,
+/// `t_2 = sum sin(2 pi i / k) q_i`. At a crease vertex, `t_1` is the tangent of the crease
+/// curve from the subdominant eigenvector (1/2) of the crease matrix, `c_0 - c_1`, and `t_2` is
+/// the null vector: Loop's boundary rules give no subdominant pair there in general. At a corner
+/// both are null vectors.
+///
+/// Parameters as for `loop_limit_points()`.
+/// \throws std::domain_error as `loop_limit_points()`.
+template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
+std::vector<std::array<typename internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>::Geom_traits::Vector_3, 2>>
+loop_limit_tangents(const PointRange& points, const TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
+  using GT = typename Helper::Geom_traits;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using FT = typename GT::FT;
+  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::const_type;
+
+  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
+  internal::check_finite_points(points, point_map);
+  auto to_vector = gt.construct_vector_3_object();
+  auto add = gt.construct_sum_of_vectors_3_object();
+  auto scale = gt.construct_scaled_vector_3_object();
+  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
+
+  std::vector<Point> input;
+  for(const auto& p : points) input.push_back(get(point_map, p));
+  std::vector<std::array<Vector, 2>> result(input.size(), {Vector(CGAL::NULL_VECTOR), Vector(CGAL::NULL_VECTOR)});
+  internal::for_each_limit_stencil(points, triangles, choice,
+    [&](std::size_t v, internal::Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring,
+        const internal::Loop_eigen_analysis& a) {
+      if(kind == internal::Loop_vertex_kind::corner) return;
+      Vector t1 = CGAL::NULL_VECTOR, t2 = CGAL::NULL_VECTOR;
+      for(std::size_t i = 0; i < ring.size(); ++i) {
+        const Vector q = to_vector(origin, input[ring[i]]);
+        t1 = add(t1, scale(q, FT(a.tangent1(Eigen::Index(i)))));
+        if(a.tangent2.size() > 0) t2 = add(t2, scale(q, FT(a.tangent2(Eigen::Index(i)))));
+      }
+      result[v] = {t1, t2};
+    });
+  return result;
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_LOOP_SUBDIVISION_H
