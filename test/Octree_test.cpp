@@ -608,11 +608,13 @@ TEST(Octree, NamedParametersAndPointMap)
     items.emplace_back(p, 0);
   using Map = CGAL::First_of_pair_property_map<Pair>;
   const ST::Octree<Epick, Map> tree(
-    items, ST::parameters::segment_query_strategy(ST::Segment_query_strategy::INDEX_SPACE_BOX,
+    items, ST::parameters::segment_query_strategy(ST::Segment_query_strategy::NEIGHBORHOOD_CULLING,
                                                   ST::parameters::bucket_capacity(8))
              .point_map(Map())
              .geom_traits(Epick()));
-  EXPECT_EQ(tree.segment_query_strategy(), ST::Segment_query_strategy::INDEX_SPACE_BOX);
+  EXPECT_EQ(tree.segment_query_strategy(), ST::Segment_query_strategy::NEIGHBORHOOD_CULLING);
+  EXPECT_EQ(ST::Octree<Epick>(std::vector<Epick::Point_3>()).segment_query_strategy(),
+            ST::Segment_query_strategy::INDEX_SPACE_BOX);
   EXPECT_EQ(tree.bucket_capacity(), 8u);
   const ST::Octree<Epick, Map> tree2(items, Map());
   std::vector<Epick::Point_3> pts;

@@ -116,7 +116,7 @@ public:
   ///   \cgalParamNBegin{maximum_depth} \cgalParamType{`std::size_t`, in [1,21]}
   ///     \cgalParamDefault{21} \cgalParamNEnd
   ///   \cgalParamNBegin{segment_query_strategy} \cgalParamType{`Segment_query_strategy`}
-  ///     \cgalParamDefault{`Segment_query_strategy::NEIGHBORHOOD_CULLING`} \cgalParamNEnd
+  ///     \cgalParamDefault{`Segment_query_strategy::INDEX_SPACE_BOX` (the faster on short segments)} \cgalParamNEnd
   ///   \cgalParamNBegin{point_map} \cgalParamType{`PointMap`} \cgalParamDefault{`PointMap()`} \cgalParamNEnd
   ///   \cgalParamNBegin{geom_traits} \cgalParamType{`GeomTraits`} \cgalParamDefault{`GeomTraits()`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
@@ -137,7 +137,7 @@ public:
     const std::size_t depth =
       choose_parameter(get_parameter(np, internal_np::maximum_depth), default_maximum_depth);
     strategy_ = choose_parameter(get_parameter(np, internal_np::segment_query_strategy),
-                                 Segment_query_strategy::NEIGHBORHOOD_CULLING);
+                                 Segment_query_strategy::INDEX_SPACE_BOX);
     build(points, pm, capacity, depth);
   }
 
@@ -360,7 +360,8 @@ public:
   }
 
   /// same as above with the strategy chosen at construction
-  /// (`Segment_query_strategy::NEIGHBORHOOD_CULLING` by default).
+  /// (`Segment_query_strategy::INDEX_SPACE_BOX` by default: the faster one for the short segments
+  /// of snapping, see the manual).
   template <typename OutputIterator>
   OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
                                        OutputIterator out) const
@@ -776,7 +777,7 @@ private:
   }
 
   Geom_traits gt_;
-  Segment_query_strategy strategy_ = Segment_query_strategy::NEIGHBORHOOD_CULLING;
+  Segment_query_strategy strategy_ = Segment_query_strategy::INDEX_SPACE_BOX;
   std::size_t capacity_ = default_bucket_capacity;
   unsigned depth_ = default_maximum_depth;
   std::array<double, 3> origin_{};
