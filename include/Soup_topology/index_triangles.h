@@ -32,30 +32,6 @@ struct Index_report
   std::size_t collapsed_triangles = 0;   ///< triangles dropped because two corners are equal
 };
 
-namespace internal {
-template <class Face>
-void assign_triangle(Face& f, std::size_t a, std::size_t b, std::size_t c)
-{
-  using Index = std::decay_t<decltype(*std::begin(f))>;
-  auto it = std::begin(f);
-  *it++ = static_cast<Index>(a);
-  *it++ = static_cast<Index>(b);
-  *it = static_cast<Index>(c);
-}
-template <class Face, class = void>
-struct has_resize : std::false_type {};
-template <class Face>
-struct has_resize<Face, std::void_t<decltype(std::declval<Face&>().resize(3))>> : std::true_type {};
-
-template <class Face>
-Face make_triangle(std::size_t a, std::size_t b, std::size_t c)
-{
-  Face f;
-  if constexpr(has_resize<Face>::value) f.resize(3); // std::vector-like faces
-  assign_triangle(f, a, b, c);
-  return f;
-}
-} // namespace internal
 
 /// \ingroup PkgSoupTopologyRef
 /// \brief builds the index representation (patent, Figure 2) of a soup of explicit triangles,
@@ -116,6 +92,46 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
   return report;
 }
 
+namespace internal {
+
+// merge_duplicate_points(), returning the new index of every old point.
+template <class PointRange, class FaceRange>
+std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, FaceRange& faces)
+{
+  using Point = typename PointRange::value_type;
+  const std::size_t n = points.size();
+  std::size_t face_id = 0;
+  for(const auto& f : faces) {
+    for(std::size_t k = 0; k < face_size(f); ++k)
+      if(corner(f, k, face_id) >= n)
+        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
+                            std::to_string(corner(f, k, face_id)) + " is out of range (" +
+                            std::to_string(n) + " points)");
+    ++face_id;
+  }
+  if(n >= std::size_t(0xFFFFFFF0u))
+    throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
+  const std::vector<std::uint32_t> first_of =
+    first_equal_points(n, [&](std::size_t i) -> const Point& { return points[i]; });
+  std::vector<std::size_t> new_index(n);
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    if(first_of[i] == i) {
+      new_index[i] = kept;
+      if(kept != i) points[kept] = points[i];
+      ++kept;
+    } else {
+      new_index[i] = new_index[first_of[i]];
+    }
+  }
+  points.resize(kept);
+  for(auto& f : faces)
+    for(auto& v : f) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+  return new_index;
+}
+
+} // namespace internal
+
 /// \ingroup PkgSoupTopologyRef
 /// \brief merges the points of an indexed soup that have exactly the same coordinates: every
 /// face refers to the first of equal points afterwards, and the later copies are removed from
@@ -130,37 +146,9 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
 template <class PointRange, class FaceRange>
 std::size_t merge_duplicate_points(PointRange& points, FaceRange& faces)
 {
-  using Point = typename PointRange::value_type;
-  const std::size_t n = points.size();
-  std::size_t face_id = 0;
-  for(const auto& f : faces) {
-    for(std::size_t k = 0; k < internal::face_size(f); ++k)
-      if(internal::corner(f, k, face_id) >= n)
-        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
-                            std::to_string(internal::corner(f, k, face_id)) + " is out of range (" +
-                            std::to_string(n) + " points)");
-    ++face_id;
-  }
-  if(n >= std::size_t(0xFFFFFFF0u))
-    throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
-  const std::vector<std::uint32_t> first_of =
-    internal::first_equal_points(n, [&](std::size_t i) -> const Point& { return points[i]; });
-  std::vector<std::uint32_t> new_index(n);
-  std::size_t kept = 0;
-  for(std::size_t i = 0; i < n; ++i) {
-    if(first_of[i] == i) {
-      new_index[i] = static_cast<std::uint32_t>(kept);
-      if(kept != i) points[kept] = points[i];
-      ++kept;
-    } else {
-      new_index[i] = new_index[first_of[i]];
-    }
-  }
-  const std::size_t removed = n - kept;
-  points.resize(kept);
-  for(auto& f : faces)
-    for(auto& v : f) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
-  return removed;
+  const std::size_t before = points.size();
+  internal::merge_duplicate_points_and_map(points, faces);
+  return before - points.size();
 }
 
 /// \ingroup PkgSoupTopologyRef

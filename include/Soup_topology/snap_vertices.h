@@ -374,12 +374,7 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   // Write the triangles back.
   for(size_type t : touched) {
     const Adjacency_tables::Triangle& tr = tables.triangle(t);
-    auto& f = *(triangles.begin() + static_cast<std::ptrdiff_t>(t));
-    auto it = std::begin(f);
-    using Index = std::decay_t<decltype(*it)>;
-    *it++ = static_cast<Index>(tr[0]);
-    *it++ = static_cast<Index>(tr[1]);
-    *it = static_cast<Index>(tr[2]);
+    internal::assign_triangle(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)), tr[0], tr[1], tr[2]);
   }
   report.border_edges_after = tables.number_of_border_edges();
   return report;

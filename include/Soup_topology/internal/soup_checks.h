@@ -17,6 +17,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 namespace Soup_topology {
 namespace internal {
@@ -41,6 +42,30 @@ std::size_t corner(const Face& f, std::size_t k, std::size_t face_id)
                           std::to_string(static_cast<long long>(value)));
   }
   return static_cast<std::size_t>(value);
+}
+
+/// writes the three indices of a triangle into a face of any `FaceRange` type.
+template <class Face>
+void assign_triangle(Face& f, std::size_t a, std::size_t b, std::size_t c)
+{
+  using Index = std::decay_t<decltype(*std::begin(f))>;
+  auto it = std::begin(f);
+  *it++ = static_cast<Index>(a);
+  *it++ = static_cast<Index>(b);
+  *it = static_cast<Index>(c);
+}
+template <class Face, class = void>
+struct has_resize : std::false_type {};
+template <class Face>
+struct has_resize<Face, std::void_t<decltype(std::declval<Face&>().resize(3))>> : std::true_type {};
+
+template <class Face>
+Face make_triangle(std::size_t a, std::size_t b, std::size_t c)
+{
+  Face f;
+  if constexpr(has_resize<Face>::value) f.resize(3); // std::vector-like faces
+  assign_triangle(f, a, b, c);
+  return f;
 }
 
 /// throws `Invalid_input` naming the first face that is not a triangle of three distinct,

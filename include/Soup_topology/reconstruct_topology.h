@@ -1,0 +1,384 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The whole pipeline in one call: exact weld, adjacency tables, epsilon welding and T-junction
+// splitting iterated to a fixpoint, and the output into any CGAL MutableFaceGraph.
+
+#ifndef SOUP_TOPOLOGY_RECONSTRUCT_TOPOLOGY_H
+#define SOUP_TOPOLOGY_RECONSTRUCT_TOPOLOGY_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/Triangle_adjacency_graph.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <boost/graph/breadth_first_search.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief everything `reconstruct_topology()` did: nothing is changed silently.
+struct Reconstruction_report
+{
+  double tolerance = 0;                     ///< the absolute tolerance used
+  std::size_t input_points = 0;             ///< points given
+  std::size_t input_triangles = 0;          ///< triangles given
+  std::size_t exact_duplicates = 0;         ///< points merged by the exact weld
+  std::size_t collapsed_triangles = 0;      ///< triangles removed because the exact weld collapsed them
+  std::size_t rounds = 0;                   ///< weld/split rounds run (the last one changes nothing)
+  // Welding, summed over the rounds.
+  std::size_t snapped_vertices = 0;         ///< vertices merged within the tolerance
+  std::size_t clusters = 0;                 ///< representatives that received vertices
+  std::size_t refused_same_triangle = 0;    ///< welds refused: the vertices share a triangle
+  std::size_t refused_degenerate = 0;       ///< welds refused: a triangle would degenerate
+  std::size_t refused_flip = 0;             ///< welds refused: a triangle would flip
+  std::size_t ambiguous_sites = 0;          ///< sites where the minimum feature separation is not met
+  std::size_t short_edges = 0;              ///< edges shorter than the tolerance (first round)
+  // T-junctions, summed over the rounds.
+  std::size_t t_junctions = 0;              ///< vertices found on the interior of a border edge
+  std::size_t split_triangles = 0;          ///< triangle splits (each adds one triangle)
+  std::size_t refused_splits = 0;           ///< T-junctions refused (overlap, degenerate, flip)
+  std::size_t ambiguous_t_junctions = 0;    ///< vertices near several border edges
+  // Before (after the exact weld) and after.
+  std::size_t border_edges_before = 0;
+  std::size_t border_edges_after = 0;
+  std::size_t non_manifold_edges_before = 0;
+  std::size_t non_manifold_edges_after = 0;
+  std::size_t non_manifold_vertices_after = 0;
+  std::size_t components_before = 0;
+  std::size_t components = 0;               ///< edge-connected components of the result
+  std::size_t removed_points = 0;           ///< points no triangle uses any more, removed at the end
+  std::size_t output_points = 0;
+  std::size_t output_triangles = 0;
+  double max_displacement = 0;              ///< largest distance from an input point to its output point
+  // Writing into a FaceGraph.
+  std::size_t duplicate_triangles = 0;      ///< triangles with the same three vertices as another, left out
+  std::size_t orientation_flips = 0;        ///< triangles reversed to orient their component
+  std::size_t duplicated_points = 0;        ///< points duplicated to separate non-manifold vertices and edges
+
+  /// the total number of refused welds.
+  std::size_t refused_welds() const { return refused_same_triangle + refused_degenerate + refused_flip; }
+  /// `true` if the result has no border edge.
+  bool closed() const { return border_edges_after == 0; }
+};
+
+namespace internal {
+
+template <class T>
+struct is_named_parameters : std::false_type {};
+template <class T, class Tag, class Base>
+struct is_named_parameters<CGAL::Named_function_parameters<T, Tag, Base>> : std::true_type {};
+
+/// removes the points no triangle uses and renumbers the triangles; returns the new index of
+/// every old point (or -1).
+template <class PointRange, class TriangleRange>
+std::vector<std::size_t> remove_unreferenced_points(PointRange& points, TriangleRange& triangles)
+{
+  std::vector<std::size_t> new_index(points.size(), static_cast<std::size_t>(-1));
+  for(const auto& f : triangles)
+    for(const auto& v : f) new_index[static_cast<std::size_t>(v)] = 0;
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(new_index[i] == 0) {
+      new_index[i] = kept;
+      if(kept != i) points[kept] = points[i];
+      ++kept;
+    }
+  points.resize(kept);
+  for(auto& f : triangles)
+    for(auto& v : f) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+  return new_index;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief repairs an indexed triangle soup in place: merges exactly equal points, builds the
+/// adjacency tables, then welds duplicate vertices within the tolerance (`snap_vertices()`) and
+/// splits T-junctions (`split_t_junctions()`) in rounds until a round changes nothing (a split
+/// can expose a new duplicate and a weld a new T-junction: Milenkovic's normalisation). Finally
+/// the points no triangle uses are removed.
+///
+/// Triangles that the exact weld collapses (two equal corners) are removed and counted. The
+/// output points are a subset of the input points (no coordinate is constructed), in input order.
+///
+/// \tparam PointRange a `std::vector`-like container of `Point_3`
+/// \tparam TriangleRange a `std::vector`-like container of triangles (3 indices each)
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{snapping_tolerance} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0: exact
+///     duplicates only} \cgalParamNEnd
+///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{the tolerance as a
+///     fraction of the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type}
+///     \cgalParamNEnd
+///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
+///   \cgalParamNBegin{do_split_t_junctions} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns a `Reconstruction_report`.
+/// \throws Invalid_input on an index out of range, a face that is not a triangle, a non-finite
+///         coordinate or an invalid tolerance; `points` and `triangles` are unchanged then.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters,
+          std::enable_if_t<internal::is_named_parameters<NamedParameters>::value, int> = 0>
+Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& triangles,
+                                           const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Point = typename PointRange::value_type;
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using FT = typename Kernel::FT;
+
+  Reconstruction_report report;
+  report.input_points = points.size();
+  report.input_triangles = triangles.size();
+  // Validate everything before changing anything.
+  {
+    std::size_t face_id = 0;
+    for(const auto& f : triangles) {
+      if(internal::face_size(f) != 3)
+        throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
+                            " vertices; a triangle soup needs exactly 3");
+      for(std::size_t k = 0; k < 3; ++k)
+        if(internal::corner(f, k, face_id) >= points.size())
+          throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
+                              std::to_string(internal::corner(f, k, face_id)) + " is out of range (" +
+                              std::to_string(points.size()) + " points)");
+      ++face_id;
+    }
+  }
+  internal::check_finite_points(points, CGAL::Identity_property_map<Point>());
+  const FT eps = internal::resolve_tolerance<FT>(points, CGAL::Identity_property_map<Point>(), np);
+  report.tolerance = CGAL::to_double(eps);
+  const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
+  const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
+  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(kernel);
+
+  const std::vector<Point> input_points = points; // for the displacement measure
+  // Step 0: exact weld. `image[i]` follows input point i to its current index.
+  std::vector<std::size_t> image = internal::merge_duplicate_points_and_map(points, triangles);
+  report.exact_duplicates = report.input_points - points.size();
+  report.collapsed_triangles = remove_collapsed_triangles(triangles);
+
+  // Step 1: the tables.
+  Adjacency_tables tables(triangles, points.size());
+  report.border_edges_before = tables.number_of_border_edges();
+  report.non_manifold_edges_before = tables.non_manifold_edges().size();
+  report.components_before = tables.number_of_connected_components();
+
+  // Steps 2 and 3, to a fixpoint.
+  std::vector<std::size_t> merged_into(points.size());
+  for(std::size_t i = 0; i < merged_into.size(); ++i) merged_into[i] = i;
+  struct Recording_visitor
+  {
+    std::vector<std::size_t>* merged_into;
+    void on_merge(std::size_t d, std::size_t r) { (*merged_into)[d] = r; }
+    void on_refusal(std::size_t, std::size_t, Refusal_reason) {}
+  } recorder{&merged_into};
+  std::vector<std::size_t> sites;
+  for(std::size_t round = 0; round < max_rounds; ++round) {
+    ++report.rounds;
+    const Snap_report s = snap_vertices(points, triangles, tables, weld_np.visitor(std::ref(recorder)));
+    report.snapped_vertices += s.merged_vertices;
+    report.clusters += s.clusters;
+    report.refused_same_triangle += s.refused_same_triangle;
+    report.refused_degenerate += s.refused_degenerate;
+    report.refused_flip += s.refused_flip;
+    if(round == 0) report.short_edges = s.short_edges;
+    sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
+    std::size_t splits = 0;
+    if(do_split) {
+      const Split_report t = split_t_junctions(points, triangles, tables, weld_np);
+      report.t_junctions += t.t_junctions;
+      report.split_triangles += t.split_triangles;
+      report.refused_splits += t.refused_overlap + t.refused_degenerate + t.refused_flip;
+      report.ambiguous_t_junctions += t.ambiguous;
+      splits = t.split_triangles;
+    }
+    if(s.merged_vertices == 0 && splits == 0) break;
+  }
+  std::sort(sites.begin(), sites.end());
+  report.ambiguous_sites = static_cast<std::size_t>(std::unique(sites.begin(), sites.end()) - sites.begin());
+
+  // Follow every input point to its final point and measure how far it moved.
+  typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
+  for(std::size_t i = 0; i < image.size(); ++i) {
+    std::size_t v = image[i];
+    while(merged_into[v] != v) v = merged_into[v];
+    image[i] = v;
+    report.max_displacement =
+      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(input_points[i], points[v]))));
+  }
+
+  // The end: drop unused points, final counts.
+  const std::size_t before = points.size();
+  internal::remove_unreferenced_points(points, triangles);
+  report.removed_points = before - points.size();
+  const Adjacency_tables final_tables(triangles, points.size());
+  report.border_edges_after = final_tables.number_of_border_edges();
+  report.non_manifold_edges_after = final_tables.non_manifold_edges().size();
+  report.non_manifold_vertices_after = final_tables.non_manifold_vertices().size();
+  report.components = final_tables.number_of_connected_components();
+  report.output_points = points.size();
+  report.output_triangles = triangles.size();
+  return report;
+}
+
+namespace internal {
+
+// BFS over the triangle adjacency graph: each triangle reached over a manifold edge is reversed
+// if it traverses the shared edge in the same direction as the triangle it was reached from.
+struct Orientation_bfs_visitor : boost::default_bfs_visitor
+{
+  std::vector<char>* reversed;
+  std::size_t* flips;
+  template <class Edge, class Graph>
+  void tree_edge(const Edge& e, const Graph& g) const
+  {
+    const Adjacency_tables& a = g.tables();
+    const auto s = source(e, g), t = target(e, g);
+    const Adjacency_tables::Edge h = halfedge_in_smaller_triangle(e, g);
+    const auto p = a.vertex(h.triangle, h.index), q = a.vertex(h.triangle, (h.index + 1) % 3);
+    auto goes_p_to_q = [&](Adjacency_tables::size_type u) {
+      const int j = a.edge_index(u, p, q);
+      return (a.vertex(u, j) == p) != ((*reversed)[u] != 0);
+    };
+    if(goes_p_to_q(s) == goes_p_to_q(t)) { (*reversed)[t] = !(*reversed)[t]; ++*flips; }
+  }
+};
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief repairs a copy of the soup with `reconstruct_topology(points, triangles, np)` and writes
+/// the result into `mesh`, any model of `MutableFaceGraph` (`CGAL::Surface_mesh`,
+/// `CGAL::Polyhedron_3`, ...). `mesh` receives the repaired triangles; what it held before stays.
+///
+/// Before writing, triangles repeating another triangle's three vertices are left out; each
+/// edge-connected component is oriented consistently by a breadth-first search over the
+/// `Triangle_adjacency_graph` (from its smallest triangle; a closed component is then turned so
+/// that its signed volume is positive, an open one so that fewer triangles are reversed than
+/// kept); vertices and edges that cannot be manifold are separated by duplicating their points
+/// (`CGAL::Polygon_mesh_processing::orient_polygon_soup()`); then
+/// `CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh()` builds the mesh.
+/// Each of these steps is counted in the report. The result passes `CGAL::is_valid_polygon_mesh()`.
+///
+/// \param np_soup the parameters of `reconstruct_topology()` for the soup
+/// \param np_mesh parameters for the mesh: `vertex_point_map`
+template <class PointRange, class TriangleRange, class PolygonMesh,
+          class NamedParametersSoup = CGAL::parameters::Default_named_parameters,
+          class NamedParametersMesh = CGAL::parameters::Default_named_parameters,
+          std::enable_if_t<!internal::is_named_parameters<PolygonMesh>::value, int> = 0>
+Reconstruction_report reconstruct_topology(const PointRange& points, const TriangleRange& triangles, PolygonMesh& mesh,
+                                           const NamedParametersSoup& np_soup = CGAL::parameters::default_values(),
+                                           const NamedParametersMesh& np_mesh = CGAL::parameters::default_values())
+{
+  using Point = typename PointRange::value_type;
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  std::vector<Point> pts(points.begin(), points.end());
+  std::vector<std::array<std::size_t, 3>> tris;
+  tris.reserve(triangles.size());
+  std::size_t face_id = 0;
+  for(const auto& f : triangles) {
+    if(internal::face_size(f) != 3)
+      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
+                          " vertices; a triangle soup needs exactly 3");
+    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
+    ++face_id;
+  }
+  Reconstruction_report report = reconstruct_topology(pts, tris, np_soup);
+
+  // Leave out repeated triangles (same three vertices in any order), keeping the first.
+  {
+    std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys(tris.size());
+    for(std::size_t t = 0; t < tris.size(); ++t) {
+      std::array<std::size_t, 3> k = tris[t];
+      std::sort(k.begin(), k.end());
+      keys[t] = {k, t};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<char> drop(tris.size(), 0);
+    for(std::size_t k = 1; k < keys.size(); ++k)
+      if(keys[k].first == keys[k - 1].first) { drop[keys[k].second] = 1; ++report.duplicate_triangles; }
+    std::size_t kept = 0;
+    for(std::size_t t = 0; t < tris.size(); ++t) if(!drop[t]) tris[kept++] = tris[t];
+    tris.resize(kept);
+  }
+
+  // Orient every component by a BFS over the triangle adjacency graph.
+  const Adjacency_tables tables(tris, pts.size());
+  const Triangle_adjacency_graph graph(tables);
+  std::vector<char> reversed(tris.size(), 0);
+  std::size_t flips = 0;
+  std::vector<Adjacency_tables::size_type> component;
+  const std::size_t number_of_components = tables.number_of_connected_components(&component);
+  {
+    std::vector<boost::default_color_type> colour(tris.size(), boost::white_color);
+    auto colour_map = boost::make_iterator_property_map(colour.begin(), get(boost::vertex_index, graph));
+    internal::Orientation_bfs_visitor visitor;
+    visitor.reversed = &reversed;
+    visitor.flips = &flips;
+    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t)
+      if(colour[t] == boost::white_color)
+        boost::breadth_first_visit(graph, t, boost::visitor(visitor).color_map(colour_map));
+  }
+  // Canonical orientation per component: positive volume if closed, else fewer reversals.
+  {
+    std::vector<double> volume(number_of_components, 0.0);
+    std::vector<std::size_t> size(number_of_components, 0), reversals(number_of_components, 0);
+    std::vector<char> open(number_of_components, 0);
+    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t) {
+      const std::size_t c = component[t];
+      ++size[c];
+      if(reversed[t]) ++reversals[c];
+      for(int i = 0; i < 3; ++i) if(tables.is_border_edge(t, i)) open[c] = 1;
+      const Point& a = pts[tris[t][0]];
+      const Point& b = pts[tris[t][reversed[t] ? 2 : 1]];
+      const Point& d = pts[tris[t][reversed[t] ? 1 : 2]];
+      const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
+      const double bx = CGAL::to_double(b.x()), by = CGAL::to_double(b.y()), bz = CGAL::to_double(b.z());
+      const double dx = CGAL::to_double(d.x()), dy = CGAL::to_double(d.y()), dz = CGAL::to_double(d.z());
+      volume[c] += ax * (by * dz - bz * dy) - ay * (bx * dz - bz * dx) + az * (bx * dy - by * dx);
+    }
+    std::vector<char> turn(number_of_components, 0);
+    for(std::size_t c = 0; c < number_of_components; ++c)
+      turn[c] = open[c] ? (2 * reversals[c] > size[c]) : (volume[c] < 0);
+    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t)
+      if(turn[component[t]]) reversed[t] = !reversed[t];
+  }
+  std::vector<std::vector<std::size_t>> polygons(tris.size());
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    if(reversed[t]) ++report.orientation_flips;
+    polygons[t] = reversed[t] ? std::vector<std::size_t>{tris[t][0], tris[t][2], tris[t][1]}
+                              : std::vector<std::size_t>{tris[t][0], tris[t][1], tris[t][2]};
+  }
+  // Separate what cannot be manifold, then build the mesh.
+  const std::size_t points_before = pts.size();
+  CGAL::Polygon_mesh_processing::orient_polygon_soup(pts, polygons, CGAL::parameters::geom_traits(Kernel()));
+  report.duplicated_points = pts.size() - points_before;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(pts, polygons, mesh, CGAL::parameters::default_values(),
+                                                              np_mesh);
+  return report;
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_RECONSTRUCT_TOPOLOGY_H

@@ -1,0 +1,295 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Pipeline step 3: T-junction repair (the patent's synchronisation of strips, Figures 7-9) by
+// splitting triangles at existing vertices, with rule tables (15) and (17).
+
+#ifndef SOUP_TOPOLOGY_SPLIT_T_JUNCTIONS_H
+#define SOUP_TOPOLOGY_SPLIT_T_JUNCTIONS_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/Octree.h>
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/internal/exact_signs.h>
+#include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/tolerance.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyTJunctions
+/// \brief what `split_t_junctions()` did.
+struct Split_report
+{
+  double tolerance = 0;                   ///< the absolute tolerance used
+  std::size_t t_junctions = 0;            ///< (border edge, vertex) pairs accepted as T-junctions
+  std::size_t split_triangles = 0;        ///< splits done (each adds one triangle)
+  std::size_t refused_overlap = 0;        ///< vertices whose border edge would overlap the split triangle
+  std::size_t refused_degenerate = 0;     ///< splits refused: a new triangle would be degenerate
+  std::size_t refused_flip = 0;           ///< splits refused: a new triangle would reverse its normal
+  std::size_t ambiguous = 0;              ///< vertices within the tolerance of several border edges
+  std::size_t border_edges_before = 0;    ///< border edges before
+  std::size_t border_edges_after = 0;     ///< border edges after
+};
+
+namespace internal {
+
+// A border edge found at the start, identified by its end vertices (triangle ids change while
+// splitting) and the triangle's third vertex.
+struct Pending_edge
+{
+  Adjacency_tables::size_type a, b;
+  std::vector<Adjacency_tables::size_type> on_edge;
+};
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyTJunctions
+/// \brief repairs T-junctions: a vertex lying within the tolerance of the interior of a border
+/// edge of another triangle, with its own border edge running along that edge from the other side.
+///
+/// For every border edge `[a,b]` of a triangle `t`, the vertices within the tolerance of the
+/// closed segment (`Octree::vertices_near_segment()`, decided by `Compare_squared_distance_3`)
+/// that are farther than the tolerance from `a` and from `b` are candidates; so is a vertex
+/// within the tolerance of an end point it shares a triangle with (a weld can never merge those
+/// two, so the vertex is not claimed twice). A candidate `c` is
+/// accepted if one of its border edges `[c,d]` belongs to another triangle, `d` is within the
+/// tolerance of `[a,b]` too (the edge runs along the first one), and that triangle does not overlap
+/// `t` (their apexes are not on the same side of the line `ab` in a common plane).
+/// A vertex near several border edges goes to the nearest one (distances compared in the
+/// kernel's `FT`; ties: the lexicographically smallest edge) and is counted as ambiguous. The accepted vertices of an edge are sorted along it
+/// and `t` is split at each in turn by rule table (15), with the vertex table updated by rule
+/// table (17) (`Adjacency_tables::split_triangle()`). A vertex whose split would create a
+/// degenerate triangle or reverse a normal (exact predicates) is refused.
+/// No point is constructed: splits reuse existing vertices.
+///
+/// New triangles are appended to `triangles` (which must support `push_back`), in the order of
+/// the border edges, then along each edge.
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{snapping_tolerance} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0} \cgalParamNEnd
+///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{fraction of the
+///     bounding-box diagonal; exclusive with `snapping_tolerance`} \cgalParamNEnd
+///   \cgalParamNBegin{point_map} \cgalParamType{a readable property map to `Point_3`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamType{a CGAL Kernel} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \throws Invalid_input for an invalid tolerance, non-finite coordinates or mismatched tables.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Split_report split_t_junctions(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
+                               const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
+  using Point = typename boost::property_traits<Point_map>::value_type;
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using FT = typename Kernel::FT;
+  using size_type = Adjacency_tables::size_type;
+
+  const Point_map pm = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
+  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
+  if(tables.number_of_vertices() != points.size() || tables.number_of_triangles() != triangles.size())
+    throw Invalid_input("split_t_junctions: the adjacency tables do not match the soup");
+  internal::check_finite_points(points, pm);
+  const FT eps = internal::resolve_tolerance<FT>(points, pm, np);
+  const FT eps2 = eps * eps;
+
+  auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
+  typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
+  typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();
+  typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
+  typename Kernel::Orientation_3 orientation = kernel.orientation_3_object();
+  typename Kernel::Coplanar_orientation_3 coplanar_orientation = kernel.coplanar_orientation_3_object();
+  typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
+  typename Kernel::Construct_segment_3 segment = kernel.construct_segment_3_object();
+  typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
+
+  Split_report report;
+  report.tolerance = CGAL::to_double(eps);
+  report.border_edges_before = tables.number_of_border_edges();
+  const std::vector<Adjacency_tables::Edge> border = tables.border_edges();
+  if(border.empty()) return report;
+
+  // The border vertices and a spatial index over them.
+  std::vector<size_type> border_vertices;
+  for(const Adjacency_tables::Edge& e : border) {
+    border_vertices.push_back(tables.vertex(e.triangle, e.index));
+    border_vertices.push_back(tables.vertex(e.triangle, (e.index + 1) % 3));
+  }
+  std::sort(border_vertices.begin(), border_vertices.end());
+  border_vertices.erase(std::unique(border_vertices.begin(), border_vertices.end()), border_vertices.end());
+  std::vector<Point> border_points;
+  border_points.reserve(border_vertices.size());
+  for(size_type v : border_vertices) border_points.push_back(point(v));
+  const Octree<Kernel> tree(border_points, CGAL::Identity_property_map<Point>(), kernel);
+
+  auto near_segment = [&](size_type v, size_type a, size_type b) {
+    return compare_sq(point(v), segment(point(a), point(b)), eps2) != CGAL::LARGER;
+  };
+  auto near_vertex = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), eps2) != CGAL::LARGER; };
+  auto share_triangle = [&](size_type u, size_type v) {
+    for(size_type t : tables.triangles_around_vertex(u)) if(tables.local_index(t, v) >= 0) return true;
+    return false;
+  };
+
+  // 1. Candidate (edge, vertex) pairs.
+  std::vector<internal::Pending_edge> pending(border.size());
+  std::vector<std::pair<size_type, std::uint32_t>> claims; // (vertex, pending edge)
+  std::vector<std::size_t> found;
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    const Adjacency_tables::Edge& e = border[k];
+    const size_type a = tables.vertex(e.triangle, e.index), b = tables.vertex(e.triangle, (e.index + 1) % 3);
+    const size_type apex = tables.vertex(e.triangle, (e.index + 2) % 3);
+    pending[k] = internal::Pending_edge{a, b, {}};
+    found.clear();
+    tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found));
+    for(std::size_t f : found) {
+      const size_type c = border_vertices[f];
+      if(c == a || c == b || c == apex) continue;
+      // Near an end point: that is a weld, not a T-junction, unless the two vertices share a
+      // triangle (the weld can never merge them; the minimum feature separation is not met).
+      if((near_vertex(c, a) && !share_triangle(c, a)) || (near_vertex(c, b) && !share_triangle(c, b))) continue;
+      // A border edge of c, in another triangle, running along [a,b].
+      bool along = false, overlap_only = false;
+      for(size_type t2 : tables.triangles_around_vertex(c)) {
+        if(t2 == e.triangle) continue;
+        const int ic = tables.local_index(t2, c);
+        for(int j : {ic, (ic + 2) % 3}) {
+          if(!tables.is_border_edge(t2, j)) continue;
+          const size_type d = (j == ic) ? tables.vertex(t2, (ic + 1) % 3) : tables.vertex(t2, (ic + 2) % 3);
+          if(!(d == a || d == b || near_segment(d, a, b))) continue;
+          const size_type x = tables.vertex(t2, (j + 2) % 3); // apex of t2 across [c,d]
+          const bool overlaps = orientation(point(a), point(b), point(apex), point(x)) == CGAL::COPLANAR &&
+                                !collinear(point(a), point(b), point(x)) &&
+                                coplanar_orientation(point(a), point(b), point(apex), point(x)) == CGAL::POSITIVE;
+          if(overlaps) overlap_only = true;
+          else along = true;
+        }
+      }
+      if(along) claims.emplace_back(c, static_cast<std::uint32_t>(k));
+      else if(overlap_only) ++report.refused_overlap;
+    }
+  }
+
+  // 2. A vertex claimed by several edges goes to the nearest one.
+  std::sort(claims.begin(), claims.end());
+  auto edge_less = [&](std::uint32_t x, std::uint32_t y) {
+    const Point& ax = point(pending[x].a); const Point& bx = point(pending[x].b);
+    const Point& ay = point(pending[y].a); const Point& by = point(pending[y].b);
+    const Point& lx = less_xyz(ax, bx) ? ax : bx; const Point& hx = less_xyz(ax, bx) ? bx : ax;
+    const Point& ly = less_xyz(ay, by) ? ay : by; const Point& hy = less_xyz(ay, by) ? by : ay;
+    if(less_xyz(lx, ly)) return true;
+    if(less_xyz(ly, lx)) return false;
+    return less_xyz(hx, hy);
+  };
+  for(std::size_t i = 0; i < claims.size();) {
+    std::size_t j = i;
+    while(j < claims.size() && claims[j].first == claims[i].first) ++j;
+    const size_type c = claims[i].first;
+    std::uint32_t best = claims[i].second;
+    for(std::size_t k = i + 1; k < j; ++k) {
+      const std::uint32_t e = claims[k].second;
+      const CGAL::Comparison_result r =
+        CGAL::compare(squared_distance(point(c), segment(point(pending[e].a), point(pending[e].b))),
+                      squared_distance(point(c), segment(point(pending[best].a), point(pending[best].b))));
+      if(r == CGAL::SMALLER || (r == CGAL::EQUAL && edge_less(e, best))) best = e;
+    }
+    if(j - i > 1) ++report.ambiguous;
+    pending[best].on_edge.push_back(c);
+    i = j;
+  }
+
+  // 3. Split, edge by edge, along each edge from a to b. Two edges of one triangle may both be
+  // split: the edges are processed in a geometric order (lexicographic end points) so that the
+  // result does not depend on the order of the triangles.
+  std::vector<std::uint32_t> order;
+  for(std::uint32_t k = 0; k < pending.size(); ++k) if(!pending[k].on_edge.empty()) order.push_back(k);
+  std::sort(order.begin(), order.end(), edge_less);
+  std::vector<size_type> changed;
+  for(std::uint32_t k : order) {
+    internal::Pending_edge& pe = pending[k];
+    std::sort(pe.on_edge.begin(), pe.on_edge.end(), [&](size_type x, size_type y) {
+      const CGAL::Comparison_result r = compare_distance(point(pe.a), point(x), point(y));
+      if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+      return less_xyz(point(x), point(y));
+    });
+    // Locate the triangle that holds the border edge [a,b] now (an earlier split on another edge
+    // of the same triangle may have moved it to a new triangle with another apex).
+    size_type t = Adjacency_tables::border_edge;
+    int i = -1;
+    for(size_type u : tables.triangles_around_vertex(pe.a)) {
+      const int j = tables.edge_index(u, pe.a, pe.b);
+      if(j >= 0 && tables.vertex(u, j) == pe.a && tables.is_border_edge(u, j)) { t = u; i = j; break; }
+    }
+    if(t == Adjacency_tables::border_edge) continue;
+    const size_type apex = tables.vertex(t, (i + 2) % 3);
+    // Refuse the vertices whose fan triangle (previous, c, apex) or (c, next, apex) would be
+    // degenerate or flipped relative to (a, b, apex); repeat until the whole fan is valid.
+    for(bool changed_fan = true; changed_fan && !pe.on_edge.empty();) {
+      changed_fan = false;
+      std::vector<size_type> chain;
+      chain.push_back(pe.a);
+      chain.insert(chain.end(), pe.on_edge.begin(), pe.on_edge.end());
+      chain.push_back(pe.b);
+      for(std::size_t k = 0; k + 1 < chain.size(); ++k) {
+        const Point& p = point(chain[k]);
+        const Point& q = point(chain[k + 1]);
+        const bool degenerate = collinear(p, q, point(apex));
+        const bool flipped = !degenerate &&
+          internal::sign_of_normal_dot(point(pe.a), point(pe.b), point(apex), p, q, point(apex)) != CGAL::POSITIVE;
+        if(!degenerate && !flipped) continue;
+        // Drop the on-edge vertex of this fan triangle (the one nearer b when both are).
+        const std::size_t drop = (k + 1 < chain.size() - 1) ? k + 1 : k;
+        if(degenerate) ++report.refused_degenerate; else ++report.refused_flip;
+        pe.on_edge.erase(pe.on_edge.begin() + static_cast<std::ptrdiff_t>(drop - 1));
+        changed_fan = true;
+        break;
+      }
+    }
+    if(pe.on_edge.empty()) continue;
+    report.t_junctions += pe.on_edge.size();
+    for(size_type c : pe.on_edge) {
+      const size_type t_new = tables.split_triangle(t, i, c);
+      changed.push_back(t);
+      changed.push_back(t_new);
+      ++report.split_triangles;
+      t = t_new; // the rest of the edge, (c, b), is edge i of the new triangle
+    }
+  }
+
+  // 4. Write the triangles back: the split ones and the new ones.
+  using Face = typename TriangleRange::value_type;
+  for(size_type t : changed) {
+    const Adjacency_tables::Triangle& tr = tables.triangle(t);
+    while(triangles.size() <= t) triangles.push_back(internal::make_triangle<Face>(0, 0, 0));
+    triangles[t] = internal::make_triangle<Face>(tr[0], tr[1], tr[2]);
+  }
+  report.border_edges_after = tables.number_of_border_edges();
+  return report;
+}
+
+/// \ingroup PkgSoupTopologyTJunctions
+/// \brief the same, building the adjacency tables first.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Split_report split_t_junctions(const PointRange& points, TriangleRange& triangles,
+                               const NamedParameters& np = CGAL::parameters::default_values())
+{
+  Adjacency_tables tables(triangles, points.size());
+  return split_t_junctions(points, triangles, tables, np);
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_SPLIT_T_JUNCTIONS_H

@@ -1,0 +1,363 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// T-junction splitting and the whole pipeline: the patent's Figure 7, CGAL's snapping and
+// stitching inputs, CAD patches, generated T-junction soups, FaceGraph output.
+
+#include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/split_t_junctions.h>
+
+#include "soup_generators.h"
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <random>
+#include <set>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Tables = ST::Adjacency_tables;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+std::size_t border_edges(const Mesh& m)
+{
+  std::size_t n = 0;
+  for(auto h : halfedges(m)) if(is_border(h, m)) ++n;
+  return n;
+}
+
+std::size_t count_border(const std::vector<Triangle>& t) { return soup_test::count_border_and_non_manifold_edges(t).first; }
+
+// ---------------------------------------------------------------------------------------------
+// The patent's Figure 7: V8 = (0,0,1) on the edge V1-V3 of T0.
+
+TEST(PatentCube, Figure7SplitGivesTables16To18AndClosesTheCube)
+{
+  std::vector<Point> points = {Point(-1, -1, 1), Point(1, -1, 1), Point(1, 1, 1), Point(-1, 1, 1), Point(-1, -1, -1),
+                               Point(1, -1, -1), Point(1, 1, -1), Point(-1, 1, -1), Point(0, 0, 1)};
+  // T0, T1a, T1b, T2..T11 (indices 0, 1, 2, 3..12).
+  std::vector<Triangle> triangles = {{0, 1, 3}, {2, 8, 1}, {2, 3, 8}, {2, 6, 3}, {7, 3, 6}, {2, 1, 6}, {5, 6, 1},
+                                     {4, 7, 5}, {6, 5, 7}, {1, 0, 5}, {4, 5, 0}, {3, 7, 0}, {4, 0, 7}};
+  Tables tables(triangles, points.size());
+  ASSERT_EQ(tables.number_of_border_edges(), 3u);
+  const ST::Split_report r = ST::split_t_junctions(points, triangles, tables);
+  EXPECT_EQ(r.t_junctions, 1u);
+  EXPECT_EQ(r.split_triangles, 1u);
+  EXPECT_EQ(r.border_edges_after, 0u);
+  ASSERT_EQ(triangles.size(), 14u);
+  EXPECT_EQ(triangles[0], (Triangle{0, 1, 8}));   // T0 of table (14)
+  EXPECT_EQ(triangles[13], (Triangle{0, 8, 3}));  // T12
+  // Table (18): T0 -> T8 T1a T12, T1a -> T1b T0 T4, T1b -> T2 T12 T1a, T12 -> T0 T1b T10.
+  const std::array<std::array<Tables::size_type, 3>, 4> expected = {{{9, 1, 13}, {2, 0, 5}, {3, 13, 1}, {0, 2, 11}}};
+  const Tables::size_type rows[4] = {0, 1, 2, 13};
+  for(int k = 0; k < 4; ++k)
+    for(int i = 0; i < 3; ++i) EXPECT_EQ(tables.neighbor(rows[k], i), expected[k][i]) << "row " << k << " edge " << i;
+  EXPECT_TRUE(tables.is_closed());
+  EXPECT_EQ(Tables(triangles, points.size()).number_of_border_edges(), 0u);
+}
+
+TEST(SplitTJunctions, SeveralVerticesOnOneEdgeAreSplitInOrder)
+{
+  // A big triangle (0,1,2) whose edge (0,1) meets a strip of three small triangles from below.
+  std::vector<Point> points = {Point(0, 0, 0), Point(4, 0, 0), Point(2, 3, 0), Point(3, 0, 0), Point(1, 0, 0),
+                               Point(2, 0, 0), Point(2, -2, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {4, 0, 6}, {5, 4, 6}, {3, 5, 6}, {1, 3, 6}};
+  Tables tables(triangles, points.size());
+  const ST::Split_report r = ST::split_t_junctions(points, triangles, tables);
+  EXPECT_EQ(r.t_junctions, 3u);
+  EXPECT_EQ(r.split_triangles, 3u);
+  EXPECT_EQ(triangles.size(), 8u);
+  EXPECT_EQ(count_border(triangles), 4u); // only the outer boundary is left
+  EXPECT_TRUE(Tables(triangles, points.size()).inconsistently_oriented_edges().empty());
+}
+
+TEST(SplitTJunctions, NoSplitWhereTheOtherSideOverlapsOrIsAway)
+{
+  // Vertices 3 and 4 lie on edge (0,1), but their triangle (3,4,5) lies on the same side as
+  // triangle (0,1,2): an overlap, refused.
+  std::vector<Point> points = {Point(0, 0, 0), Point(4, 0, 0), Point(2, 3, 0), Point(2, 0, 0), Point(3, 0, 0),
+                               Point(2.5, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {3, 4, 5}};
+  const ST::Split_report r = ST::split_t_junctions(points, triangles);
+  EXPECT_EQ(r.split_triangles, 0u);
+  EXPECT_EQ(r.refused_overlap, 2u);
+  // A vertex near the edge without a border edge running along it is not a T-junction.
+  std::vector<Point> p2 = {Point(0, 0, 0), Point(4, 0, 0), Point(2, 3, 0), Point(2, 0, 0), Point(2, -1, 5), Point(3, -1, 5)};
+  std::vector<Triangle> t2 = {{0, 1, 2}, {3, 5, 4}};
+  EXPECT_EQ(ST::split_t_junctions(p2, t2).split_triangles, 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The pipeline
+
+template <class P>
+std::pair<std::vector<P>, std::vector<Triangle>> load(const std::string& relative)
+{
+  std::vector<P> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh(relative, points, triangles);
+  return {points, triangles};
+}
+
+void expect_no_degenerate(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  Epick::Collinear_3 collinear;
+  std::size_t degenerate = 0;
+  for(const Triangle& t : triangles) if(collinear(points[t[0]], points[t[1]], points[t[2]])) ++degenerate;
+  EXPECT_EQ(degenerate, 0u);
+}
+
+TEST(Pipeline, PigWithTheGoodToleranceBeatsCGALSnapAndStitch)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  // CGAL: the soup as a mesh, then snap_borders + stitch_borders with the same tolerance.
+  Mesh cgal;
+  {
+    auto p = points;
+    std::vector<std::vector<std::size_t>> polygons;
+    for(const Triangle& t : triangles) polygons.push_back({t[0], t[1], t[2]});
+    PMP::orient_polygon_soup(p, polygons);
+    PMP::polygon_soup_to_polygon_mesh(p, polygons, cgal);
+    PMP::experimental::snap_borders(cgal, CGAL::Constant_property_map<Mesh::Vertex_index, double>(0.3));
+    PMP::stitch_borders(cgal);
+  }
+  const std::size_t cgal_border = border_edges(cgal);
+
+  Mesh ours;
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(points, triangles, ours, CGAL::parameters::snapping_tolerance(0.3));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(ours));
+  EXPECT_EQ(r.border_edges_before, 1296u);
+  EXPECT_LT(r.border_edges_after, r.border_edges_before / 4);
+  EXPECT_LE(border_edges(ours), cgal_border) << "CGAL leaves " << cgal_border << " border edges";
+  EXPECT_LE(r.max_displacement, 0.3);
+  EXPECT_GT(r.t_junctions, 0u);
+  RecordProperty("cgal_border_edges", static_cast<int>(cgal_border));
+  RecordProperty("our_border_edges", static_cast<int>(border_edges(ours)));
+  // The soup version: no degenerate triangle.
+  auto [p2, t2] = load<Point>("cgal_repair/pig.stl.xz");
+  const ST::Reconstruction_report r2 = ST::reconstruct_topology(p2, t2, CGAL::parameters::snapping_tolerance(0.3));
+  expect_no_degenerate(p2, t2);
+  EXPECT_EQ(r2.border_edges_after, r.border_edges_after);
+}
+
+TEST(Pipeline, PigWithATooSmallToleranceIsNotHarmed)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  const auto before = triangles;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.001));
+  expect_no_degenerate(points, triangles);
+  EXPECT_LE(r.border_edges_after, r.border_edges_before);
+  EXPECT_LE(r.max_displacement, 0.001);
+  Mesh mesh;
+  ST::reconstruct_topology(load<Point>("cgal_repair/pig.stl.xz").first, before, mesh,
+                           CGAL::parameters::snapping_tolerance(0.001));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+}
+
+TEST(Pipeline, AlstomCadPatchesCloseTheirTJunctions)
+{
+  auto [points, triangles] = load<Point>("cad/ALSTOM_TEST4.off");
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  Mesh mesh;
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(points, triangles, mesh, ST::parameters::relative_tolerance(1e-4));
+  EXPECT_EQ(r.border_edges_before, 231u);
+  EXPECT_LT(r.border_edges_after, 231u);
+  EXPECT_GE(r.t_junctions, 1u);
+  EXPECT_LE(r.max_displacement, 1e-4 * diag);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  RecordProperty("border_edges_after", static_cast<int>(r.border_edges_after));
+}
+
+TEST(Pipeline, ATrueCrackWiderThanTheToleranceStaysOpen)
+{
+  // Two squares 0.01 apart; tolerance 0.001: nothing is glued.
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                               Point(1.01, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1.01, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.001));
+  EXPECT_EQ(r.snapped_vertices, 0u);
+  EXPECT_EQ(r.split_triangles, 0u);
+  EXPECT_EQ(r.border_edges_after, 8u);
+  EXPECT_EQ(r.components, 2u);
+  // With 0.02 it closes the seam.
+  const ST::Reconstruction_report r2 = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.02));
+  EXPECT_EQ(r2.border_edges_after, 6u);
+  EXPECT_EQ(r2.components, 1u);
+}
+
+// Generated T-junction soups from every clean mesh.
+class TJunctionSoup : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TJunctionSoup, ClosedManifoldOrientedAndOrderIndependent)
+{
+  auto [points, triangles] = load<Point>(GetParam());
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  const Tables original(triangles, points.size());
+  auto soup = soup_test::t_junction_soup(points, triangles, 5, 1e-7 * diag / std::sqrt(3.0), 17);
+  ASSERT_GT(soup.t_junctions, 10u);
+  const std::vector<Point> input_points = soup.points;
+  const auto np = CGAL::parameters::snapping_tolerance(1e-6 * diag);
+
+  auto p = soup.points;
+  auto t = soup.triangles;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(p, t, np);
+  EXPECT_EQ(r.border_edges_after, original.number_of_border_edges());
+  EXPECT_EQ(r.non_manifold_edges_after, 0u);
+  EXPECT_EQ(r.split_triangles, soup.t_junctions);
+  EXPECT_LE(r.max_displacement, 1e-6 * diag);
+  EXPECT_EQ(r.refused_welds(), 0u);
+  // Every output point is one of the input points: nothing is constructed.
+  {
+    std::set<std::array<double, 3>> in;
+    for(const Point& q : input_points) in.insert({q.x(), q.y(), q.z()});
+    for(const Point& q : p) EXPECT_TRUE(in.count({q.x(), q.y(), q.z()}));
+  }
+
+  Mesh mesh;
+  ST::reconstruct_topology(soup.points, soup.triangles, mesh, np);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  if(original.is_closed()) {
+    EXPECT_TRUE(CGAL::is_closed(mesh));
+    EXPECT_TRUE(PMP::is_outward_oriented(mesh));
+  }
+
+  // Shuffled triangles and rotated corners: the same triangles.
+  std::mt19937 rng(5);
+  std::vector<std::size_t> perm(soup.triangles.size());
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  std::vector<Triangle> shuffled;
+  for(std::size_t k : perm) {
+    const Triangle& q = soup.triangles[k];
+    const int s = static_cast<int>(rng() % 3);
+    shuffled.push_back({q[s], q[(s + 1) % 3], q[(s + 2) % 3]});
+  }
+  auto p2 = soup.points;
+  ST::reconstruct_topology(p2, shuffled, np);
+  auto canonical = [](const std::vector<Point>& pts, const std::vector<Triangle>& tris) {
+    std::multiset<std::array<std::array<double, 3>, 3>> out;
+    for(const Triangle& q : tris) {
+      std::array<std::array<double, 3>, 3> c;
+      for(int k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
+      const int s = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+      out.insert({c[s], c[(s + 1) % 3], c[(s + 2) % 3]});
+    }
+    return out;
+  };
+  EXPECT_EQ(canonical(p, t), canonical(p2, shuffled));
+}
+
+INSTANTIATE_TEST_SUITE_P(RealMeshes, TJunctionSoup,
+                         ::testing::Values("clean/elephant.off", "clean/fandisk.off.xz",
+                                           "clean/ChineseDragon-10kv.off.xz", "clean/armadillo.off.xz",
+                                           "clean/bunny00.off.xz", "clean/refined_elephant.off.xz"));
+
+// CGAL's stitching inputs: every pair CGAL's own test stitches is stitched by us too.
+TEST(Pipeline, CGALStitchingInputs)
+{
+  struct Case { const char* file; std::size_t cgal_stitched_pairs; };
+  const Case cases[] = {
+    {"cgal_repair/data_stitching/pinched.off", 2}, {"cgal_repair/quads_to_stitch.off", 4},
+    {"cgal_repair/data_stitching/incidence_3.off", 3}, {"cgal_repair/data_stitching/incoherent_patch_orientation.off", 1},
+    {"cgal_repair/data_stitching/non_manifold.off", 0}, {"cgal_repair/data_stitching/non_manifold2.off", 0},
+    {"cgal_repair/data_stitching/nm_cubes.off", 4}, {"cgal_repair/data_stitching/deg_border.off", 2},
+  };
+  for(const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    // The raw file, as CGAL reads it: border edges before any weld.
+    std::vector<Point> raw_points;
+    std::vector<std::vector<std::size_t>> raw_polygons;
+    ASSERT_TRUE(CGAL::IO::read_polygon_soup(soup_test::data_file(c.file), raw_points, raw_polygons));
+    std::vector<Triangle> raw;
+    for(const auto& poly : raw_polygons)
+      for(std::size_t k = 1; k + 1 < poly.size(); ++k) raw.push_back({poly[0], poly[k], poly[k + 1]});
+    const std::size_t raw_border = count_border(raw);
+    Mesh mesh;
+    const ST::Reconstruction_report r = ST::reconstruct_topology(raw_points, raw, mesh);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+    // Each stitched pair removes two border edges.
+    EXPECT_LE(r.border_edges_after + 2 * c.cgal_stitched_pairs, raw_border)
+      << "raw " << raw_border << ", after " << r.border_edges_after;
+  }
+}
+
+TEST(Pipeline, PolyhedronAndEpeck)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  CGAL::Polyhedron_3<Epick> poly;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, poly, CGAL::parameters::snapping_tolerance(0.3));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(poly));
+  EXPECT_EQ(num_faces(poly), r.output_triangles - r.duplicate_triangles);
+
+  // Epeck gives the same decisions as Epick on the same coordinates.
+  std::vector<Epeck::Point_3> ep;
+  for(const Point& p : points) ep.emplace_back(p.x(), p.y(), p.z());
+  auto t1 = triangles;
+  auto t2 = triangles;
+  auto p1 = points;
+  const ST::Reconstruction_report a = ST::reconstruct_topology(p1, t1, CGAL::parameters::snapping_tolerance(0.3));
+  const ST::Reconstruction_report b = ST::reconstruct_topology(ep, t2, CGAL::parameters::snapping_tolerance(Epeck::FT(0.3)));
+  EXPECT_EQ(t1, t2);
+  EXPECT_EQ(a.split_triangles, b.split_triangles);
+  EXPECT_EQ(a.snapped_vertices, b.snapped_vertices);
+  CGAL::Surface_mesh<Epeck::Point_3> exact_mesh;
+  ST::reconstruct_topology(ep, t2, exact_mesh);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(exact_mesh));
+}
+
+TEST(Pipeline, RunningTwiceChangesNothing)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.3));
+  const auto p1 = points;
+  const auto t1 = triangles;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.3));
+  EXPECT_EQ(r.snapped_vertices, 0u);
+  EXPECT_EQ(r.split_triangles, 0u);
+  EXPECT_EQ(points, p1);
+  EXPECT_EQ(triangles, t1);
+}
+
+TEST(Pipeline, BadInputLeavesTheDataUnchanged)
+{
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 1, 5}};
+  const auto p0 = points;
+  const auto t0 = triangles;
+  EXPECT_THROW(ST::reconstruct_topology(points, triangles), ST::Invalid_input);
+  EXPECT_EQ(points, p0);
+  EXPECT_EQ(triangles, t0);
+  triangles = {{0, 1, 2}};
+  EXPECT_THROW(ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(-1.0)), ST::Invalid_input);
+  points[1] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  EXPECT_THROW(ST::reconstruct_topology(points, triangles), ST::Invalid_input);
+  std::vector<Point> none;
+  std::vector<Triangle> no_triangles;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(none, no_triangles);
+  EXPECT_EQ(r.output_triangles, 0u);
+}
+
+} // namespace
