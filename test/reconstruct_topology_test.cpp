@@ -22,8 +22,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <filesystem>
+#include <fstream>
 #include <numeric>
 #include <random>
 #include <set>
@@ -361,3 +365,105 @@ TEST(Pipeline, BadInputLeavesTheDataUnchanged)
 }
 
 } // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The `repair` command
+
+namespace cli_test {
+
+std::string cli() { return SOUP_TOPOLOGY_CLI; }
+
+TEST(RepairCommand, RoundTripOnEveryFormat)
+{
+  const std::string dir = soup_test::temporary_folder("repair");
+  const std::string pig = soup_test::data_file("cgal_repair/pig.stl.xz");
+  // pig.stl -> each output format, then each output read back: closed, same counts.
+  for(const char* ext : {"off", "obj", "ply", "stl"}) {
+    SCOPED_TRACE(ext);
+    const std::string out = dir + "/pig." + ext;
+    const auto [json, code] = soup_test::run_command(cli() + " repair '" + pig + "' -o '" + out + "' --tolerance 0.3 --json --check");
+    ASSERT_EQ(code, 0) << json;
+    EXPECT_EQ(soup_test::json_integer(json, "border_edges_before"), 1296);
+    EXPECT_EQ(soup_test::json_integer(json, "border_edges_after"), 0);
+    EXPECT_TRUE(soup_test::json_bool(json, "closed"));
+    EXPECT_GT(soup_test::json_integer(json, "split_triangles"), 0);
+    EXPECT_GE(soup_test::json_integer(json, "t_junctions"), 0);
+    EXPECT_EQ(soup_test::json_integer(json, "non_manifold_edges_after"), 0);
+    EXPECT_EQ(soup_test::json_integer(json, "components"), 1);
+    const auto [stats, code2] = soup_test::run_command(cli() + " stats '" + out + "' --json");
+    ASSERT_EQ(code2, 0) << stats;
+    EXPECT_EQ(soup_test::json_integer(stats, "border_edges"), 0);
+    EXPECT_EQ(soup_test::json_integer(stats, "inconsistently_oriented_edges"), 0);
+    EXPECT_EQ(soup_test::json_integer(stats, "triangles"), soup_test::json_integer(json, "output_triangles"));
+  }
+  // Input formats: OFF, ASCII STL, VRML.
+  for(const char* f : {"cad/ALSTOM_TEST4.off", "real_defects/admesh/block/nearby-bad.stl", "cad/kicad/TO-220-3_Vertical.wrl"}) {
+    SCOPED_TRACE(f);
+    const auto [json, code] = soup_test::run_command(cli() + " repair '" + soup_test::data_file(f) + "' -o '" + dir +
+                                                     "/out.off' --relative-tolerance 1e-4 --report '" + dir + "/r.json'");
+    EXPECT_EQ(code, 0) << json;
+    std::ifstream report(dir + "/r.json");
+    std::string line;
+    std::getline(report, line);
+    EXPECT_GE(soup_test::json_integer(line, "border_edges_after"), 0);
+    EXPECT_LE(soup_test::json_integer(line, "border_edges_after"), soup_test::json_integer(line, "border_edges_before"));
+  }
+  // The TO-220 gaps close with 1e-6 of the diagonal.
+  const auto [json, code] = soup_test::run_command(cli() + " repair '" + soup_test::data_file("cad/kicad/TO-220-3_Vertical.wrl") +
+                                                   "' -o '" + dir + "/to220.ply' --relative-tolerance 1e-6 --json --check");
+  EXPECT_EQ(code, 0) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "border_edges_before"), 10);
+  EXPECT_EQ(soup_test::json_integer(json, "border_edges_after"), 0);
+  // --check fails (exit 1) where the result stays open.
+  const auto [json2, code2] = soup_test::run_command(cli() + " repair '" + pig + "' -o '" + dir + "/open.off' --check");
+  EXPECT_EQ(code2, 1) << json2;
+}
+
+TEST(RepairCommand, RefusesBadInputAndNeverTouchesTheOutput)
+{
+  const std::string dir = soup_test::temporary_folder("repair_bad");
+  const std::string existing = dir + "/existing.off";
+  std::ofstream(existing) << "keep me\n";
+  auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir + "/" + name, std::ios::binary) << content;
+    return dir + "/" + name;
+  };
+  std::string truncated(84 + 50, '\0');
+  truncated[80] = 2; // announces 2 facets, holds 1
+  const std::string good = soup_test::data_file("real_defects/admesh/block/exact-bad.stl");
+  struct Case { std::string args; std::string message; };
+  const Case cases[] = {
+    {"'" + write("truncated.stl", truncated) + "' -o '" + existing + "'", "truncated"},
+    {"'" + write("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\nvertex 0 1 0\n"
+                            "endloop\nendfacet\nendsolid\n") + "' -o '" + existing + "'", "non-finite"},
+    {"'" + good + "' -o '" + existing + "' --tolerance -1", "tolerance"},
+    {"'" + good + "' -o '" + existing + "' --tolerance nan", "tolerance"},
+    {"'" + dir + "/missing.stl' -o '" + existing + "'", "cannot open"},
+    {"'" + good + "' -o '" + dir + "/no/such/folder/out.off'", "folder does not exist"},
+    {"'" + good + "' -o '" + dir + "/out.xyz'", "unknown output extension"},
+    {"'" + good + "' -o '" + good + "'", "the output file is the input file"},
+    {"'" + good + "'", "no output file"},
+    {"'" + good + "' -o '" + existing + "' --tolerance 1 --relative-tolerance 1", "not both"},
+  };
+  for(const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const auto [out, code] = soup_test::run_command(cli() + " repair " + c.args + " 2>&1");
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_NE(out.find(c.message), std::string::npos) << out;
+    std::ifstream in(existing);
+    std::string content;
+    std::getline(in, content);
+    EXPECT_EQ(content, "keep me");
+  }
+  // A read-only folder: the output cannot be written, nothing is left behind.
+  if(geteuid() != 0) {
+    const std::string locked = dir + "/locked";
+    std::filesystem::create_directories(locked);
+    std::filesystem::permissions(locked, std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+    const auto [out, code] = soup_test::run_command(cli() + " repair '" + good + "' -o '" + locked + "/out.off' 2>&1");
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_TRUE(std::filesystem::is_empty(locked));
+  }
+}
+
+} // namespace cli_test

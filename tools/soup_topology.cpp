@@ -3,20 +3,36 @@
 //
 // soup_topology: the command-line face of the library.
 //   soup_topology stats FILE [--json]
-// Exit codes: 0 success, 2 bad input or arguments (message on stderr).
+//   soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]
+//                        [--json] [--check] [--no-t-junctions]
+// Exit codes: 0 success, 1 `--check` found the result not closed or not manifold,
+//             2 bad input or arguments (message on stderr).
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/soup_statistics.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <iostream>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -37,9 +53,17 @@ struct Usage_error : std::runtime_error
 const char* usage_text =
   "usage:\n"
   "  soup_topology stats FILE [--json]\n"
-  "      reads FILE (.stl ASCII or binary, .off, .obj, .ply), welds exactly equal points,\n"
+  "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
-  "exit codes: 0 success, 2 bad input or arguments\n";
+  "  soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]\n"
+  "                       [--json] [--check] [--no-t-junctions]\n"
+  "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
+  "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
+  "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
+  "      component and writes OUT (.off, .obj, .ply or .stl) atomically. Prints the report\n"
+  "      (--json: one JSON object); --report also writes it to FILE.json.\n"
+  "      --check exits with code 1 when the result is not closed or not manifold.\n"
+  "exit codes: 0 success, 1 --check failed, 2 bad input or arguments\n";
 
 // An ordered list of "key": value pairs, printed as one JSON object or as aligned text.
 class Report
@@ -49,10 +73,10 @@ public:
   void add(const std::string& key, bool value) { items_.emplace_back(key, value ? "true" : "false"); }
   void add(const std::string& key, double value)
   {
-    std::ostringstream s;
-    s.precision(17);
-    s << value;
-    items_.emplace_back(key, s.str());
+    // Shortest text that reads back as the same double.
+    char buffer[64];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+    items_.emplace_back(key, std::string(buffer, end));
   }
   void add_string(const std::string& key, const std::string& value) { items_.emplace_back(key, quote(value)); }
 
@@ -140,6 +164,168 @@ int run_stats(const std::vector<std::string>& args)
   return 0;
 }
 
+double parse_number(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(text.c_str(), &end);
+  if(text.empty() || *end != '\0' || errno == ERANGE)
+    throw Usage_error(option + ": '" + text + "' is not a number");
+  if(!std::isfinite(x) || x < 0) throw Usage_error(option + ": the tolerance must be a finite number >= 0, got '" + text + "'");
+  return x;
+}
+
+// Writes through `write` into a temporary file beside `target` (same extension, so that CGAL
+// picks the same format), then renames it over `target`: an error never leaves a half-written
+// file, and an existing `target` is replaced only by a complete one.
+template <class Writer>
+void write_atomically(const std::string& target, const Writer& write)
+{
+  namespace fs = std::filesystem;
+  const fs::path path(target);
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if(!fs::is_directory(folder)) throw std::runtime_error(target + ": the output folder does not exist");
+  const fs::path temporary = folder / (".soup_topology." + std::to_string(std::random_device{}()) + ".tmp" +
+                                       path.extension().string());
+  bool ok = false;
+  try {
+    ok = write(temporary.string());
+  } catch(...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  std::error_code ec;
+  if(!ok || !fs::exists(temporary)) {
+    fs::remove(temporary, ec);
+    throw std::runtime_error(target + ": cannot write the output file");
+  }
+  fs::rename(temporary, path, ec);
+  if(ec) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error(target + ": cannot write the output file (" + ec.message() + ")");
+  }
+}
+
+class Progress
+{
+public:
+  explicit Progress(bool on) : on_(on), start_(std::chrono::steady_clock::now()) {}
+  void operator()(const std::string& what) const
+  {
+    if(!on_) return;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::cerr << "[" << std::fixed << std::setprecision(2) << s << " s] " << what << std::endl;
+  }
+private:
+  bool on_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+int run_repair(const std::vector<std::string>& args)
+{
+  std::string in, out, report_file;
+  bool json = false, check = false, split = true;
+  std::optional<double> tolerance, relative;
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if(i + 1 >= args.size()) throw Usage_error("repair: " + a + " needs a value");
+      return args[++i];
+    };
+    if(a == "-o" || a == "--output") out = value();
+    else if(a == "--tolerance") tolerance = parse_number(a, value());
+    else if(a == "--relative-tolerance") relative = parse_number(a, value());
+    else if(a == "--report") report_file = value();
+    else if(a == "--json") json = true;
+    else if(a == "--check") check = true;
+    else if(a == "--no-t-junctions") split = false;
+    else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
+    else if(in.empty()) in = a;
+    else throw Usage_error("repair: more than one input file ('" + in + "' and '" + a + "')");
+  }
+  if(in.empty()) throw Usage_error("repair: no input file");
+  if(out.empty()) throw Usage_error("repair: no output file (-o OUT)");
+  if(tolerance && relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  const std::string out_format = ST::IO::file_extension(out);
+  if(out_format != "off" && out_format != "obj" && out_format != "ply" && out_format != "stl")
+    throw Usage_error("repair: unknown output extension '" + out_format + "' (expected .off, .obj, .ply or .stl)");
+  {
+    std::error_code ec;
+    if(std::filesystem::exists(out) && std::filesystem::equivalent(in, out, ec))
+      throw Usage_error("repair: the output file is the input file ('" + out + "'); choose another name");
+  }
+
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(in, points, triangles);
+  Progress progress_on(read.input_triangles > 1000000);
+  progress_on("read " + std::to_string(read.input_triangles) + " triangles");
+
+  ST::Reconstruction_report r;
+  if(tolerance)
+    r = ST::reconstruct_topology(points, triangles,
+                                 ST::parameters::do_split_t_junctions(split, CGAL::parameters::snapping_tolerance(*tolerance)));
+  else if(relative)
+    r = ST::reconstruct_topology(points, triangles,
+                                 ST::parameters::do_split_t_junctions(split, ST::parameters::relative_tolerance(*relative)));
+  else
+    r = ST::reconstruct_topology(points, triangles, ST::parameters::do_split_t_junctions(split));
+  progress_on("repaired the soup");
+  const ST::Adjacency_tables tables(triangles, points.size());
+  const ST::Soup_statistics s = ST::compute_statistics(points, tables);
+
+  CGAL::Surface_mesh<Point> mesh;
+  const ST::Face_graph_output_report fg = ST::triangle_soup_to_face_graph(points, triangles, mesh);
+  progress_on("oriented and built the mesh");
+  write_atomically(out, [&](const std::string& file) {
+    return CGAL::IO::write_polygon_mesh(file, mesh, CGAL::parameters::stream_precision(17));
+  });
+  progress_on("wrote " + out);
+
+  Report rep;
+  rep.add_string("input", in);
+  rep.add_string("output", out);
+  rep.add_string("format", read.format);
+  rep.add("input_vertices", read.input_vertices);
+  rep.add("input_triangles", read.input_triangles);
+  rep.add("exact_duplicates", read.exact_duplicates);
+  rep.add("tolerance", r.tolerance);
+  add_statistics(rep, s, 0);
+  rep.add("border_edges_before", r.border_edges_before);
+  rep.add("border_edges_after", r.border_edges_after);
+  rep.add("non_manifold_edges_before", r.non_manifold_edges_before);
+  rep.add("non_manifold_edges_after", r.non_manifold_edges_after);
+  rep.add("snapped_vertices", r.snapped_vertices);
+  rep.add("refused", r.refused_welds() + r.refused_splits);
+  rep.add("refused_welds", r.refused_welds());
+  rep.add("refused_splits", r.refused_splits);
+  rep.add("ambiguous", r.ambiguous_sites + r.ambiguous_t_junctions);
+  rep.add("short_edges", r.short_edges);
+  rep.add("t_junctions", r.t_junctions);
+  rep.add("split_triangles", r.split_triangles);
+  rep.add("rounds", r.rounds);
+  rep.add("collapsed_triangles_removed", read.collapsed_triangles);
+  rep.add("removed_points", r.removed_points);
+  rep.add("max_displacement", r.max_displacement);
+  rep.add("duplicate_triangles_removed", fg.duplicate_triangles);
+  rep.add("orientation_flips", fg.orientation_flips);
+  rep.add("duplicated_points", fg.duplicated_points);
+  rep.add("output_vertices", static_cast<std::size_t>(num_vertices(mesh)));
+  rep.add("output_triangles", static_cast<std::size_t>(num_faces(mesh)));
+  if(!report_file.empty())
+    write_atomically(report_file, [&](const std::string& file) {
+      std::ofstream f(file);
+      f << rep.json() << "\n";
+      return static_cast<bool>(f);
+    });
+  if(json) std::cout << rep.json() << "\n";
+  else std::cout << "soup_topology repair\n" << rep.text();
+  if(check && (!s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0)) return 1;
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -153,6 +339,7 @@ int main(int argc, char** argv)
   args.erase(args.begin());
   try {
     if(command == "stats") return run_stats(args);
+    if(command == "repair") return run_repair(args);
     throw Usage_error("unknown command '" + command + "'");
   } catch(const Usage_error& e) {
     std::cerr << "soup_topology: " << e.what() << "\n" << usage_text;

@@ -268,44 +268,50 @@ struct Orientation_bfs_visitor : boost::default_bfs_visitor
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyPipeline
-/// \brief repairs a copy of the soup with `reconstruct_topology(points, triangles, np)` and writes
-/// the result into `mesh`, any model of `MutableFaceGraph` (`CGAL::Surface_mesh`,
-/// `CGAL::Polyhedron_3`, ...). `mesh` receives the repaired triangles; what it held before stays.
+/// \brief what `triangle_soup_to_face_graph()` changed to make the soup a valid polygon mesh.
+struct Face_graph_output_report
+{
+  std::size_t duplicate_triangles = 0;   ///< triangles with the same three vertices as another, left out
+  std::size_t orientation_flips = 0;     ///< triangles reversed to orient their component
+  std::size_t duplicated_points = 0;     ///< points duplicated to separate non-manifold vertices and edges
+};
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief writes an indexed triangle soup (typically the result of `reconstruct_topology()`) into
+/// `mesh`, any model of `MutableFaceGraph` (`CGAL::Surface_mesh`, `CGAL::Polyhedron_3`, ...).
+/// What `mesh` held before stays.
 ///
-/// Before writing, triangles repeating another triangle's three vertices are left out; each
+/// Triangles repeating another triangle's three vertices are left out (the first is kept); each
 /// edge-connected component is oriented consistently by a breadth-first search over the
-/// `Triangle_adjacency_graph` (from its smallest triangle; a closed component is then turned so
-/// that its signed volume is positive, an open one so that fewer triangles are reversed than
-/// kept); vertices and edges that cannot be manifold are separated by duplicating their points
-/// (`CGAL::Polygon_mesh_processing::orient_polygon_soup()`); then
-/// `CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh()` builds the mesh.
-/// Each of these steps is counted in the report. The result passes `CGAL::is_valid_polygon_mesh()`.
+/// `Triangle_adjacency_graph` (from its smallest triangle), then turned as a whole so that a
+/// closed component has a positive signed volume and an open one reverses fewer triangles than
+/// it keeps; vertices and edges that cannot be manifold are separated by duplicating their points
+/// (`CGAL::Polygon_mesh_processing::orient_polygon_soup()`, which finds the orientation consistent
+/// and keeps it); then `CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh()` builds the
+/// mesh. Each step is counted in the report. The result passes `CGAL::is_valid_polygon_mesh()`.
 ///
-/// \param np_soup the parameters of `reconstruct_topology()` for the soup
 /// \param np_mesh parameters for the mesh: `vertex_point_map`
+/// \throws Invalid_input if a face is not a triangle of in-range, distinct indices.
 template <class PointRange, class TriangleRange, class PolygonMesh,
-          class NamedParametersSoup = CGAL::parameters::Default_named_parameters,
-          class NamedParametersMesh = CGAL::parameters::Default_named_parameters,
-          std::enable_if_t<!internal::is_named_parameters<PolygonMesh>::value, int> = 0>
-Reconstruction_report reconstruct_topology(const PointRange& points, const TriangleRange& triangles, PolygonMesh& mesh,
-                                           const NamedParametersSoup& np_soup = CGAL::parameters::default_values(),
-                                           const NamedParametersMesh& np_mesh = CGAL::parameters::default_values())
+          class NamedParametersMesh = CGAL::parameters::Default_named_parameters>
+Face_graph_output_report triangle_soup_to_face_graph(const PointRange& points, const TriangleRange& triangles,
+                                                     PolygonMesh& mesh,
+                                                     const NamedParametersMesh& np_mesh = CGAL::parameters::default_values())
 {
   using Point = typename PointRange::value_type;
   using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  internal::check_triangle_soup(triangles, points.size());
+  Face_graph_output_report report;
   std::vector<Point> pts(points.begin(), points.end());
   std::vector<std::array<std::size_t, 3>> tris;
   tris.reserve(triangles.size());
-  std::size_t face_id = 0;
-  for(const auto& f : triangles) {
-    if(internal::face_size(f) != 3)
-      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
-                          " vertices; a triangle soup needs exactly 3");
-    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
-    ++face_id;
+  {
+    std::size_t face_id = 0;
+    for(const auto& f : triangles) {
+      tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
+      ++face_id;
+    }
   }
-  Reconstruction_report report = reconstruct_topology(pts, tris, np_soup);
-
   // Leave out repeated triangles (same three vertices in any order), keeping the first.
   {
     std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys(tris.size());
@@ -376,6 +382,41 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
   report.duplicated_points = pts.size() - points_before;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(pts, polygons, mesh, CGAL::parameters::default_values(),
                                                               np_mesh);
+  return report;
+}
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief repairs a copy of the soup with `reconstruct_topology(points, triangles, np_soup)` and
+/// writes the result into `mesh` with `triangle_soup_to_face_graph()`; the report gathers both.
+/// `points` and `triangles` are not changed.
+///
+/// \param np_soup the parameters of `reconstruct_topology()` for the soup
+/// \param np_mesh parameters for the mesh: `vertex_point_map`
+template <class PointRange, class TriangleRange, class PolygonMesh,
+          class NamedParametersSoup = CGAL::parameters::Default_named_parameters,
+          class NamedParametersMesh = CGAL::parameters::Default_named_parameters,
+          std::enable_if_t<!internal::is_named_parameters<PolygonMesh>::value, int> = 0>
+Reconstruction_report reconstruct_topology(const PointRange& points, const TriangleRange& triangles, PolygonMesh& mesh,
+                                           const NamedParametersSoup& np_soup = CGAL::parameters::default_values(),
+                                           const NamedParametersMesh& np_mesh = CGAL::parameters::default_values())
+{
+  using Point = typename PointRange::value_type;
+  std::vector<Point> pts(points.begin(), points.end());
+  std::vector<std::array<std::size_t, 3>> tris;
+  tris.reserve(triangles.size());
+  std::size_t face_id = 0;
+  for(const auto& f : triangles) {
+    if(internal::face_size(f) != 3)
+      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
+                          " vertices; a triangle soup needs exactly 3");
+    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
+    ++face_id;
+  }
+  Reconstruction_report report = reconstruct_topology(pts, tris, np_soup);
+  const Face_graph_output_report out = triangle_soup_to_face_graph(pts, tris, mesh, np_mesh);
+  report.duplicate_triangles = out.duplicate_triangles;
+  report.orientation_flips = out.orientation_flips;
+  report.duplicated_points = out.duplicated_points;
   return report;
 }
 

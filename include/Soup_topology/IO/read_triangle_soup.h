@@ -8,6 +8,7 @@
 
 #include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/IO/STL.h>
+#include <Soup_topology/IO/VRML.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/internal/soup_checks.h>
@@ -29,7 +30,7 @@ namespace IO {
 /// \brief what `read_triangle_soup()` read and what the exact weld did.
 struct Soup_read_report
 {
-  std::string format;                     ///< "stl", "off", "obj", "ply"
+  std::string format;                     ///< "stl", "off", "obj", "ply", "wrl"
   std::size_t input_polygons = 0;         ///< faces or facets in the file
   std::size_t input_vertices = 0;         ///< vertices in the file (3 per facet for STL)
   std::size_t input_triangles = 0;        ///< triangles after fan triangulation of polygons
@@ -50,12 +51,14 @@ inline std::string file_extension(const std::string& filename)
 }
 
 /// \ingroup PkgSoupTopologyIO
-/// \brief reads `filename` (STL binary or ASCII, OFF, OBJ, PLY, chosen by the extension) into an
+/// \brief reads `filename` (STL binary or ASCII, OFF, OBJ, PLY, VRML 2.0 `.wrl`, chosen by the
+/// extension) into an
 /// indexed triangle soup whose exactly equal points are merged: `points` holds distinct points,
 /// `triangles` index triples of distinct vertices. Polygons are fan-triangulated.
 ///
 /// STL goes through `read_STL_triangles()` and `index_triangles()`; the other formats through
-/// `CGAL::IO::read_polygon_soup()` and `merge_duplicate_points()`.
+/// `CGAL::IO::read_polygon_soup()` and `merge_duplicate_points()`; VRML through `read_VRML()`
+/// (every shape's points appended, then merged the same way).
 /// \throws Read_error if the file cannot be read or is malformed; Invalid_input for an index out of
 /// range or a non-finite coordinate. `points` and `triangles` are unchanged then.
 template <class Point, class Face>
@@ -109,9 +112,18 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
     report.input_triangles = tris.size();
     report.exact_duplicates = merge_duplicate_points(pts, tris);
     report.collapsed_triangles = remove_collapsed_triangles(tris);
+  } else if(report.format == "wrl") {
+    const VRML_read_result vr = read_VRML(filename, pts, tris);
+    report.input_polygons = vr.number_of_polygons;
+    report.input_vertices = pts.size();
+    report.input_triangles = tris.size();
+    report.skipped_polygons = vr.number_of_short_polygons;
+    Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
+    report.exact_duplicates = merge_duplicate_points(pts, tris);
+    report.collapsed_triangles = remove_collapsed_triangles(tris);
   } else {
     throw Read_error(filename + ": unknown file extension '" + report.format +
-                     "' (expected .stl, .off, .obj or .ply)");
+                     "' (expected .stl, .off, .obj, .ply or .wrl)");
   }
   points.swap(pts);
   triangles.swap(tris);
