@@ -568,3 +568,50 @@ TEST(LoopLimit, SubdivisionConvergesToTheLimitPoints)
       EXPECT_LT(std::sqrt(CGAL::squared_distance(limits3[v], limits[v])), 1e-12) << v;
   }
 }
+
+// The edges of a refined level, derived without a search, are those a search finds.
+TEST(LoopLevel, RefinedEdgesAreConsistent)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  cube(points, triangles, true);
+  triangles.push_back({0, 1, 6});   // a fin: non-manifold edges (0, 1) and (1, 6)
+  const ST::Adjacency_tables adj(triangles, points.size());
+  ST::internal::Loop_level level;
+  level.initialize(adj);
+  std::size_t n = points.size();
+  for(int it = 0; it < 3; ++it) {
+    const std::size_t E = level.number_of_edges;
+    level.refine(n);
+    n += E;
+    ST::internal::Loop_level copy = level;
+    copy.compute_halves();
+    EXPECT_EQ(copy.half1, level.half1) << it;
+    EXPECT_EQ(copy.half2, level.half2) << it;
+    EXPECT_EQ(copy.count, level.count) << it;
+    // every triangle edge carries the two end vertices of its edge
+    for(std::size_t h = 0; h < level.edge_of.size(); ++h) {
+      const auto e = level.edge_of[h];
+      const auto& tr = level.triangles[h / 3];
+      std::array<std::uint32_t, 2> mine = {tr[h % 3], tr[(h + 1) % 3]};
+      std::array<std::uint32_t, 2> first = {level.first_vertex(e), level.second_vertex(e)};
+      std::sort(mine.begin(), mine.end());
+      std::sort(first.begin(), first.end());
+      EXPECT_EQ(mine, first);
+    }
+    // and the same edges as the adjacency tables of the refined triangles
+    const ST::Adjacency_tables refined(level.triangles, n);
+    for(std::size_t h = 0; h < level.edge_of.size(); ++h) {
+      const auto t = static_cast<std::uint32_t>(h / 3);
+      const auto u = refined.neighbor(t, int(h % 3));
+      const auto e = level.edge_of[h];
+      if(u == ST::Adjacency_tables::border_edge) EXPECT_EQ(level.count[e], 1);
+      else if(u == ST::Adjacency_tables::non_manifold_edge) EXPECT_EQ(level.count[e], 3);
+      else {
+        EXPECT_EQ(level.count[e], 2);
+        const auto other = level.half1[e] / 3 == t ? level.half2[e] : level.half1[e];
+        EXPECT_EQ(other / 3, u);
+      }
+    }
+  }
+}

@@ -166,48 +166,83 @@ struct Loop_level
     }
   }
 
+  /// writes the triangles of the next level (see `refine()`) into `faces` (resized).
+  template <class FaceRange>
+  void write_children(std::size_t n, FaceRange& faces) const
+  {
+    using Face = typename FaceRange::value_type;
+    const std::size_t m = triangles.size();
+    faces.resize(4 * m);
+    for(std::size_t t = 0; t < m; ++t) {
+      const std::array<Index, 3>& v = triangles[t];
+      const std::size_t e[3] = {n + edge_of[3 * t], n + edge_of[3 * t + 1], n + edge_of[3 * t + 2]};
+      faces[4 * t + 0] = make_triangle<Face>(v[0], e[0], e[2]);
+      faces[4 * t + 1] = make_triangle<Face>(v[1], e[1], e[0]);
+      faces[4 * t + 2] = make_triangle<Face>(v[2], e[2], e[1]);
+      faces[4 * t + 3] = make_triangle<Face>(e[0], e[1], e[2]);
+    }
+  }
+
   /// the next level: triangle `t = (v0, v1, v2)` with edge points `e0, e1, e2` (edge `i` =
   /// `(v_i, v_{i+1})`) becomes `4t + k = (v_k, e_k, e_{k+2})` for `k = 0, 1, 2` and
   /// `4t + 3 = (e0, e1, e2)`; vertex `v` keeps its index, the point of edge `e` is `n + e`.
-  /// The halves of edge `e` become edges `2e` (at its first vertex) and `2e + 1`; the three
-  /// inner edges of `t` are `2E + 3t + k`.
-  void refine(std::size_t n, bool with_edges)
+  /// The halves of edge `e` become edges `2e` (at its end vertex of smaller index) and `2e + 1`;
+  /// the three inner edges of `t` are `2E + 3t + k`. The halves and counts of the new edges follow
+  /// from the old ones without a search.
+  void refine(std::size_t n)
   {
-    const std::size_t m = triangles.size(), E = number_of_edges;
+    const std::size_t m = triangles.size(), E = number_of_edges, E2 = 2 * E + 3 * m;
     std::vector<std::array<Index, 3>> children(4 * m);
-    std::vector<Index> child_edges;
-    if(with_edges) child_edges.resize(12 * m);
+    std::vector<Index> child_edges(12 * m);
     for(std::size_t t = 0; t < m; ++t) {
       const std::array<Index, 3> v = triangles[t];
       const Index e[3] = {static_cast<Index>(n + edge_of[3 * t]), static_cast<Index>(n + edge_of[3 * t + 1]),
                           static_cast<Index>(n + edge_of[3 * t + 2])};
       for(int k = 0; k < 3; ++k) children[4 * t + std::size_t(k)] = {v[k], e[k], e[(k + 2) % 3]};
       children[4 * t + 3] = {e[0], e[1], e[2]};
-      if(!with_edges) continue;
       Index* ce = child_edges.data() + 12 * t;
       const Index inner = static_cast<Index>(2 * E + 3 * t);
       for(int k = 0; k < 3; ++k) {
-        const Index ek = edge_of[3 * t + std::size_t(k)], ep = edge_of[3 * t + std::size_t((k + 2) % 3)];
-        ce[3 * k + 0] = 2 * ek + (first_vertex(ek) == v[k] ? 0 : 1);
+        const Index vk = v[std::size_t(k)], vn = v[std::size_t((k + 1) % 3)], vp = v[std::size_t((k + 2) % 3)];
+        ce[3 * k + 0] = 2 * edge_of[3 * t + std::size_t(k)] + (vk < vn ? 0 : 1);
         ce[3 * k + 1] = inner + Index(k);
-        ce[3 * k + 2] = 2 * ep + (first_vertex(ep) == v[k] ? 0 : 1);
+        ce[3 * k + 2] = 2 * edge_of[3 * t + std::size_t((k + 2) % 3)] + (vk < vp ? 0 : 1);
       }
       ce[9] = inner + 1;
       ce[10] = inner + 2;
       ce[11] = inner + 0;
     }
-    if(with_edges) {
-      kind.reserve(n + E);
-      for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::crease : Loop_vertex_kind::smooth);
-      edge_of.swap(child_edges);
-      number_of_edges = 2 * E + 3 * m;
-      triangles.swap(children);
-      compute_halves();
-    } else {
-      triangles.swap(children);
-      edge_of.clear();
-      number_of_edges = 0;
-    }
+    // The half of child edge 2e (s = 0) or 2e + 1 (s = 1) inside the children of half h of e.
+    auto child_half = [&](Index h, int s) -> Index {
+      if(h == none) return none;
+      const Index t = h / 3, i = h % 3;
+      const Index a = triangles[t][i], b = triangles[t][(i + 1) % 3];
+      const bool at_a = (a < b) == (s == 0);
+      return at_a ? 3 * (4 * t + i) : 3 * (4 * t + (i + 1) % 3) + 2;
+    };
+    std::vector<Index> h1(E2), h2(E2);
+    std::vector<std::uint8_t> c(E2);
+    for(Index e = 0; e < E; ++e)
+      for(int s = 0; s < 2; ++s) {
+        h1[2 * e + Index(s)] = child_half(half1[e], s);
+        h2[2 * e + Index(s)] = child_half(half2[e], s);
+        c[2 * e + Index(s)] = count[e];
+      }
+    for(Index t = 0; t < m; ++t)
+      for(Index k = 0; k < 3; ++k) {
+        const Index inner = static_cast<Index>(2 * E + 3 * t + k);
+        h1[inner] = 3 * (4 * t + k) + 1;
+        h2[inner] = 3 * (4 * t + 3) + (k + 2) % 3;
+        c[inner] = 2;
+      }
+    kind.reserve(n + E);
+    for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::crease : Loop_vertex_kind::smooth);
+    edge_of.swap(child_edges);
+    number_of_edges = E2;
+    triangles.swap(children);
+    half1.swap(h1);
+    half2.swap(h2);
+    count.swap(c);
   }
 };
 
@@ -475,8 +510,8 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
 /// \ingroup PkgSoupTopologySubdivision
 /// \brief subdivides the indexed triangle soup `(points, triangles)` in place with Loop's scheme.
 ///
-/// Each level splits every triangle `t = (v0, v1, v2)` into four, `(v0, e0, e2)`, `(e0, v1, e1)`,
-/// `(e2, e1, v2)` and `(e0, e1, e2)` at indices `4t` to `4t + 3`, where `e_i` is the new point of
+/// Each level splits every triangle `t = (v0, v1, v2)` into four, `(v0, e0, e2)`, `(v1, e1, e0)`,
+/// `(v2, e2, e1)` and `(e0, e1, e2)` at indices `4t` to `4t + 3`, where `e_i` is the new point of
 /// edge `i = (v_i, v_{i+1})` (orientation is kept). The old points keep their indices (and move);
 /// the edge points are appended, one per edge of the adjacency tables (an edge shared by two
 /// triangles gets one point). The rules:
@@ -522,7 +557,6 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_N
   using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
   using GT = typename Helper::Geom_traits;
   using Point = typename GT::Point_3;
-  using Face = typename TriangleRange::value_type;
   using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::type;
 
   const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
@@ -548,17 +582,21 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_N
          4 * std::uint64_t(level.triangles.size()) >= std::uint64_t(Adjacency_tables::non_manifold_edge))
         throw Invalid_input("loop_subdivision: level " + std::to_string(it + 1) + " would exceed 32-bit indices");
       internal::loop_smooth(level, current, next, choice, gt);
-      level.refine(current.size(), it + 1 < iterations);
+      if(it + 1 < iterations) level.refine(current.size());
+      else level.write_children(current.size(), triangles);   // the caller's triangles, from here on
       current.swap(next);
     }
-    // Write back: nothing above modified the caller's containers.
-    TriangleRange result;
-    result.reserve(level.triangles.size());
-    for(const auto& t : level.triangles) result.push_back(internal::make_triangle<Face>(t[0], t[1], t[2]));
-    triangles.swap(result);
-    points.resize(current.size());
-    std::size_t i = 0;
-    for(auto& p : points) put(point_map, p, current[i++]);
+    // Nothing above but the last statement of the loop modified the caller's containers.
+    if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&
+                 std::is_same<Point_map, CGAL::Identity_property_map<Point>>::value) {
+      points.swap(current);
+      if(tables != nullptr) *tables = Adjacency_tables(triangles, points.size());
+      return;
+    } else {
+      points.resize(current.size());
+      std::size_t i = 0;
+      for(auto& p : points) put(point_map, p, current[i++]);
+    }
   }
   if(tables != nullptr) *tables = Adjacency_tables(triangles, current.size());
 }
