@@ -65,8 +65,9 @@ struct Pending_edge
 /// that are farther than the tolerance from `a` and from `b` are candidates; so is a vertex
 /// within the tolerance of an end point it shares a triangle with (a weld can never merge those
 /// two, so the vertex is not claimed twice). A candidate `c` is
-/// accepted if one of its border edges `[c,d]` belongs to another triangle, `d` is within the
-/// tolerance of `[a,b]` too (the edge runs along the first one), and that triangle does not overlap
+/// accepted if one of its border edges `[c,d]` belongs to another triangle and runs along `[a,b]`
+/// (`d` is within the tolerance of `[a,b]`, or `a` or `b` is within the tolerance of `[c,d]`: the
+/// two borders may be sampled independently), and that triangle does not overlap
 /// `t` (their apexes are not on the same side of the line `ab` in a common plane).
 /// A vertex near several border edges goes to the nearest one (distances compared in the
 /// kernel's `FT`; ties: the lexicographically smallest edge) and is counted as ambiguous. The accepted vertices of an edge are sorted along it
@@ -169,7 +170,9 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
         for(int j : {ic, (ic + 2) % 3}) {
           if(!tables.is_border_edge(t2, j)) continue;
           const size_type d = (j == ic) ? tables.vertex(t2, (ic + 1) % 3) : tables.vertex(t2, (ic + 2) % 3);
-          if(!(d == a || d == b || near_segment(d, a, b))) continue;
+          // The two border edges run along each other: one end of either lies within the
+          // tolerance of the other segment (vertex-segment tests only, never the infinite line).
+          if(!(d == a || d == b || near_segment(d, a, b) || near_segment(a, c, d) || near_segment(b, c, d))) continue;
           const size_type x = tables.vertex(t2, (j + 2) % 3); // apex of t2 across [c,d]
           const bool overlaps = orientation(point(a), point(b), point(apex), point(x)) == CGAL::COPLANAR &&
                                 !collinear(point(a), point(b), point(x)) &&
