@@ -3,12 +3,17 @@
 //
 // The package's named parameters. They chain with CGAL's: CGAL already has `geom_traits`,
 // `point_map`, `snapping_tolerance`, `visitor`, `number_of_iterations` and `verbose`, which the
-// package reuses; new tags exist only for what CGAL lacks. Each builder has a one-argument form
+// package reuses; new tags exist only for what CGAL lacks. The octree's parameters
+// (`bucket_capacity`, `maximum_depth`, `segment_query_strategy`) and the subdivision's are
+// declared beside their algorithms and included here, so this header gives all of them. Each builder has a one-argument form
 // that starts a chain and a two-argument form that appends to an existing chain:
 //   Soup_topology::parameters::relative_tolerance(1e-6, CGAL::parameters::geom_traits(K()))
 
 #ifndef SOUP_TOPOLOGY_PARAMETERS_H
 #define SOUP_TOPOLOGY_PARAMETERS_H
+
+#include <Soup_topology/internal/octree_parameters.h>
+#include <Soup_topology/internal/subdivision_parameters.h>
 
 #include <CGAL/Named_function_parameters.h>
 
