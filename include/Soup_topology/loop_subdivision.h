@@ -264,8 +264,9 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
 
   const std::size_t n = in.size(), E = level.number_of_edges;
   out.resize(n + E);
-  std::vector<Vector> ring(n, CGAL::NULL_VECTOR);
-  std::vector<Index> valence(n, 0);
+  // the sum of the ring of every vertex and its valence, side by side (one cache line per update)
+  struct Ring { Vector sum; Index valence; };
+  std::vector<Ring> ring(n, Ring{Vector(CGAL::NULL_VECTOR), 0});
   const FT three(3), eighth(0.125), half(0.5);
   for(Index e = 0; e < E; ++e) {
     const Index h = level.half1[e];
@@ -275,14 +276,14 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
     const Vector va = vec(a), vb = vec(b);
     if(level.is_crease(e)) {
       out[n + e] = translate(origin, scale(add(va, vb), half));
-      if(level.kind[a] == Loop_vertex_kind::crease) ring[a] = add(ring[a], vb);
-      if(level.kind[b] == Loop_vertex_kind::crease) ring[b] = add(ring[b], va);
+      if(level.kind[a] == Loop_vertex_kind::crease) ring[a].sum = add(ring[a].sum, vb);
+      if(level.kind[b] == Loop_vertex_kind::crease) ring[b].sum = add(ring[b].sum, va);
     } else {
       const Index h2 = level.half2[e];
       const Index c = tr[(i + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
       out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
-      if(level.kind[a] == Loop_vertex_kind::smooth) { ring[a] = add(ring[a], vb); ++valence[a]; }
-      if(level.kind[b] == Loop_vertex_kind::smooth) { ring[b] = add(ring[b], va); ++valence[b]; }
+      if(level.kind[a] == Loop_vertex_kind::smooth) { ring[a].sum = add(ring[a].sum, vb); ++ring[a].valence; }
+      if(level.kind[b] == Loop_vertex_kind::smooth) { ring[b].sum = add(ring[b].sum, va); ++ring[b].valence; }
     }
   }
   std::vector<double> betas;
@@ -290,7 +291,7 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
   for(Index v = 0; v < n; ++v) {
     switch(level.kind[v]) {
     case Loop_vertex_kind::smooth: {
-      const std::size_t k = valence[v];
+      const std::size_t k = ring[v].valence;
       if(k >= betas.size()) {
         const std::size_t old = betas.size();
         betas.resize(k + 1);
@@ -298,11 +299,11 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
       }
       const FT beta(betas[k]);
       const FT centre(1. - double(k) * betas[k]);
-      out[v] = translate(origin, add(scale(vec(v), centre), scale(ring[v], beta)));
+      out[v] = translate(origin, add(scale(vec(v), centre), scale(ring[v].sum, beta)));
       break;
     }
     case Loop_vertex_kind::crease:
-      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(ring[v], eighth)));
+      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(ring[v].sum, eighth)));
       break;
     default:
       out[v] = in[v];
