@@ -1,0 +1,237 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The whole repair end to end (issue 5), side by side in one run with the CGAL pipeline a user
+// would otherwise write. Reading is excluded for both: every benchmark starts from the indexed
+// soup in memory (copied outside the timed region when the algorithm works in place).
+//
+// Inputs, made once per process by soup_test::t_junction_soup (8 slabs along x) from
+// clean/bunny00.off (75,408 triangles):
+// - "1M": bunny00 split 1-to-4 twice (1,206,528 triangles before the T-junction splits);
+// - "300k": split once (301,632 triangles), for CGAL if it is too slow at 1M;
+// each without jitter ("exact": T-junctions exact up to rounding, the seams' vertices duplicated
+// exactly) and with every copy of a vertex jittered by up to 1e-7 x the bounding-box diagonal on
+// each coordinate ("jitter"). The tolerance is 1e-6 x the diagonal everywhere.
+//
+// Benchmarks (CPU time):
+// - BM_ours_in_place: Soup_topology::reconstruct_topology(points, triangles, np);
+// - BM_ours_to_mesh: reconstruct_topology(points, triangles, mesh, np) into a Surface_mesh;
+// - BM_CGAL_pipeline: PMP::repair_polygon_soup, orient_polygon_soup, polygon_soup_to_polygon_mesh,
+//   experimental::snap_borders (constant tolerance), stitch_borders; "*_ms" counters per phase.
+// Counter "border_edges": the border edges left (the input is a closed bunny: 0 is the answer).
+// Target (issue 5): ours closed, at least 10x faster than CGAL, no more border edges than CGAL.
+//
+// Run: reconstruct_topology_benchmark [--benchmark_filter=...]; data from SOUP_TOPOLOGY_DATA_DIR.
+
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/reconstruct_topology.h>
+
+#include "../test/soup_generators.h"
+#include "../test/test_utilities.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <ctime>
+#include <string>
+#include <vector>
+
+namespace ST = Soup_topology;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Index_triangle = std::array<std::size_t, 3>;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+namespace {
+
+double thread_cpu_ms()
+{
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
+double diagonal(const std::vector<Point>& points)
+{
+  CGAL::Bbox_3 box;
+  for(const Point& p : points) box += p.bbox();
+  const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+enum class Size { one_million, three_hundred_thousand };
+enum class Jitter { exact, jittered };
+
+struct Input
+{
+  std::vector<Point> points;
+  std::vector<Index_triangle> triangles;
+  std::size_t t_junctions = 0;
+  double tolerance = 0;
+};
+
+Input make_input(Size size, Jitter jitter)
+{
+  std::vector<Point> points;
+  std::vector<Index_triangle> triangles;
+  soup_test::read_data_mesh("clean/bunny00.off.xz", points, triangles);
+  soup_test::subdivide_midpoints(points, triangles);
+  if(size == Size::one_million) soup_test::subdivide_midpoints(points, triangles);
+  const double diag = diagonal(points);
+  const auto soup =
+    soup_test::t_junction_soup(points, triangles, 8, jitter == Jitter::jittered ? 1e-7 * diag : 0.0, 2026u);
+  Input in;
+  in.points = soup.points;
+  in.triangles = soup.triangles;
+  in.t_junctions = soup.t_junctions;
+  in.tolerance = 1e-6 * diag;
+  return in;
+}
+
+const Input& input(Size size, Jitter jitter)
+{
+  if(size == Size::one_million) {
+    if(jitter == Jitter::exact) { static const Input a = make_input(size, jitter); return a; }
+    static const Input b = make_input(size, jitter);
+    return b;
+  }
+  if(jitter == Jitter::exact) { static const Input c = make_input(size, jitter); return c; }
+  static const Input d = make_input(size, jitter);
+  return d;
+}
+
+std::size_t border_edges(const Mesh& mesh)
+{
+  std::size_t n = 0;
+  for(Mesh::Halfedge_index h : mesh.halfedges())
+    if(mesh.is_border(h)) ++n;
+  return n;
+}
+
+void set_input_counters(benchmark::State& state, const Input& in)
+{
+  state.counters["triangles"] = static_cast<double>(in.triangles.size());
+  state.counters["t_junctions"] = static_cast<double>(in.t_junctions);
+}
+
+void report_counters(benchmark::State& state, const ST::Reconstruction_report& r)
+{
+  state.counters["border_before"] = static_cast<double>(r.border_edges_before);
+  state.counters["border_edges"] = static_cast<double>(r.border_edges_after);
+  state.counters["rounds"] = static_cast<double>(r.rounds);
+  state.counters["snapped"] = static_cast<double>(r.snapped_vertices);
+  state.counters["splits"] = static_cast<double>(r.split_triangles);
+  state.counters["non_manifold_edges"] = static_cast<double>(r.non_manifold_edges_after);
+}
+
+void BM_ours_in_place(benchmark::State& state, Size size, Jitter jitter)
+{
+  const Input& in = input(size, jitter);
+  ST::Reconstruction_report report;
+  for(auto _ : state) {
+    state.PauseTiming();
+    std::vector<Point> points = in.points;
+    std::vector<Index_triangle> triangles = in.triangles;
+    state.ResumeTiming();
+    report = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(in.tolerance));
+    benchmark::DoNotOptimize(triangles.data());
+  }
+  set_input_counters(state, in);
+  report_counters(state, report);
+}
+
+void BM_ours_to_mesh(benchmark::State& state, Size size, Jitter jitter)
+{
+  const Input& in = input(size, jitter);
+  ST::Reconstruction_report report;
+  std::size_t mesh_border = 0;
+  bool valid = false;
+  for(auto _ : state) {
+    Mesh mesh;
+    report = ST::reconstruct_topology(in.points, in.triangles, mesh, CGAL::parameters::snapping_tolerance(in.tolerance));
+    state.PauseTiming();
+    mesh_border = border_edges(mesh);
+    valid = CGAL::is_valid_polygon_mesh(mesh);
+    state.ResumeTiming();
+  }
+  set_input_counters(state, in);
+  report_counters(state, report);
+  state.counters["border_edges"] = static_cast<double>(mesh_border);
+  state.counters["valid"] = valid ? 1 : 0;
+}
+
+void BM_CGAL_pipeline(benchmark::State& state, Size size, Jitter jitter)
+{
+  const Input& in = input(size, jitter);
+  double repair_ms = 0, orient_ms = 0, mesh_ms = 0, snap_ms = 0, stitch_ms = 0;
+  std::size_t border_before = 0, border = 0, faces = 0;
+  for(auto _ : state) {
+    state.PauseTiming();
+    std::vector<Point> points = in.points;
+    std::vector<Index_triangle> polygons = in.triangles;
+    state.ResumeTiming();
+    const double t0 = thread_cpu_ms();
+    PMP::repair_polygon_soup(points, polygons);
+    const double t1 = thread_cpu_ms();
+    PMP::orient_polygon_soup(points, polygons);
+    const double t2 = thread_cpu_ms();
+    Mesh mesh;
+    PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    const double t3 = thread_cpu_ms();
+    state.PauseTiming();
+    border_before = border_edges(mesh);
+    state.ResumeTiming();
+    const double t4 = thread_cpu_ms();
+    PMP::experimental::snap_borders(mesh, CGAL::Constant_property_map<Mesh::Vertex_index, double>(in.tolerance));
+    const double t5 = thread_cpu_ms();
+    PMP::stitch_borders(mesh);
+    const double t6 = thread_cpu_ms();
+    repair_ms = t1 - t0;
+    orient_ms = t2 - t1;
+    mesh_ms = t3 - t2;
+    snap_ms = t5 - t4;
+    stitch_ms = t6 - t5;
+    state.PauseTiming();
+    border = border_edges(mesh);
+    faces = mesh.number_of_faces();
+    state.ResumeTiming();
+  }
+  set_input_counters(state, in);
+  state.counters["repair_ms"] = repair_ms;
+  state.counters["orient_ms"] = orient_ms;
+  state.counters["to_mesh_ms"] = mesh_ms;
+  state.counters["snap_ms"] = snap_ms;
+  state.counters["stitch_ms"] = stitch_ms;
+  state.counters["border_before"] = static_cast<double>(border_before);
+  state.counters["border_edges"] = static_cast<double>(border);
+  state.counters["faces"] = static_cast<double>(faces);
+}
+
+#define SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(name, iterations)                                          \
+  BENCHMARK_CAPTURE(name, 1M_exact, Size::one_million, Jitter::exact)                                   \
+    ->Unit(benchmark::kMillisecond)->Iterations(iterations);                                            \
+  BENCHMARK_CAPTURE(name, 1M_jitter, Size::one_million, Jitter::jittered)                               \
+    ->Unit(benchmark::kMillisecond)->Iterations(iterations);                                            \
+  BENCHMARK_CAPTURE(name, 300k_exact, Size::three_hundred_thousand, Jitter::exact)                      \
+    ->Unit(benchmark::kMillisecond)->Iterations(iterations);                                            \
+  BENCHMARK_CAPTURE(name, 300k_jitter, Size::three_hundred_thousand, Jitter::jittered)                  \
+    ->Unit(benchmark::kMillisecond)->Iterations(iterations)
+
+SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_ours_in_place, 2);
+SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_ours_to_mesh, 2);
+SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_CGAL_pipeline, 1);
+
+} // namespace
+
+BENCHMARK_MAIN();
