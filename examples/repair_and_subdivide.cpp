@@ -7,11 +7,8 @@
 
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/loop_subdivision.h>
-#if __has_include(<Soup_topology/reconstruct_topology.h>)
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
-#define SOUP_TOPOLOGY_EXAMPLE_HAS_RECONSTRUCT 1
-#endif
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -34,9 +31,7 @@ int main(int argc, char** argv)
   try {
     const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(filename, points, triangles);   // exact weld
     const std::size_t facets = read.input_triangles;
-#ifdef SOUP_TOPOLOGY_EXAMPLE_HAS_RECONSTRUCT
     ST::reconstruct_topology(points, triangles, ST::parameters::relative_tolerance(1e-6));
-#endif
     const ST::Adjacency_tables repaired(triangles, points.size());
     const std::size_t border = repaired.number_of_border_edges();
     const std::size_t repaired_triangles = triangles.size();
