@@ -629,3 +629,33 @@ TEST(Octree, NamedParametersAndPointMap)
     EXPECT_EQ(y, x);
   }
 }
+
+// The self-join answers, for every point, what vertices_near_point() answers, and visits every
+// point once.
+template <typename K>
+void check_self_join(const std::vector<Xyz>& xyz, std::size_t capacity)
+{
+  const std::vector<typename K::Point_3> pts = to_points<K>(xyz);
+  const ST::Octree<K> tree(pts, ST::parameters::bucket_capacity(capacity));
+  for(double r : {0.0, 1e-6, 1e-3, 2e-2, 0.3})
+  {
+    std::vector<int> visits(pts.size(), 0);
+    tree.for_each_neighbourhood(typename K::FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
+      ++visits[i];
+      std::vector<std::size_t> expected;
+      tree.vertices_near_point(pts[i], typename K::FT(r), std::back_inserter(expected));
+      ASSERT_EQ(near, expected) << "point " << i << " radius " << r;
+    });
+    for(int v : visits)
+      ASSERT_EQ(v, 1);
+  }
+}
+
+TEST(Octree, SelfJoinMatchesPointQueries)
+{
+  check_self_join<Epick>(uniform_points(3000, 5), 16);
+  check_self_join<Epick>(clustered_points(3000, 6), 4);
+  check_self_join<Epick>(surface_points(3000, 7), 1);
+  check_self_join<Epeck>(clustered_points(500, 8), 16);
+  check_self_join<SC>(uniform_points(2000, 9), 8);
+}

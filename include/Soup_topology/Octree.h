@@ -270,6 +270,75 @@ public:
     return std::copy(found.begin(), found.end(), out);
   }
 
+  /// calls `callback(i, near)` for every point `i`, in Morton order, with `near` the indices of
+  /// the points within `radius` of it (itself included), in increasing order: the answers of
+  /// `vertices_near_point(point i, radius)` for all points at once (a self-join, as welding
+  /// needs). A point whose ball lies well inside its leaf's box (the common case when `radius` is
+  /// small against the leaves) is answered from its leaf alone, without a descent from the root;
+  /// the others go through `vertices_near_point()`. The decisions are the same as there.
+  template <typename Callback>
+  void for_each_neighbourhood(const FT& radius, Callback callback) const
+  {
+    check_radius(radius);
+    if(empty())
+      return;
+    const FT r2 = radius * radius;
+    typename Geom_traits::Compare_squared_distance_3 compare_sq =
+      gt_.compare_squared_distance_3_object();
+    std::vector<std::size_t> near;
+    Stack stack;
+    stack.push_back(Frame{0, {{0, 0, 0}}});
+    while(!stack.empty())
+    {
+      const Frame f = stack.back();
+      stack.pop_back();
+      const Node& nd = nodes_[f.node];
+      if(nd.begin == nd.end)
+        continue;
+      if(nd.first_child != 0)
+      {
+        for(int i = 7; i >= 0; --i)
+          stack.push_back(child_frame(f, nd, i));
+        continue;
+      }
+      const double cs = cell_size_[nd.level];
+      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+      {
+        near.clear();
+        const Query_point qa = approximate(points_[k]);
+        const double bound = radius_bound(r2, qa.err);
+        bool inside = std::isfinite(bound);
+        for(int i = 0; i < 3 && inside; ++i)
+        {
+          const double lo = origin_[i] + f.c[i] * cs;
+          inside = qa.c[i] - lo > 2 * bound && (lo + cs) - qa.c[i] > 2 * bound;
+        }
+        if(inside)
+        {
+          const double bound2 = bound * bound;
+          // With double coordinates the squared distance computed in double is within a few
+          // ulps of the exact one: far from r2 it decides alone, near it the kernel decides.
+          const double r2d = CGAL::to_double(r2);
+          const bool filter = double_coordinates && r2d > 1e-250 && r2d < 1e250;
+          for(std::uint32_t j = nd.begin; j != nd.end; ++j)
+          {
+            const double d2 = point_squared_distance(j, qa.c);
+            if(d2 > bound2)
+              continue;
+            if(filter && d2 < r2d * (1 - 1e-12) && (d2 == 0 || d2 > 1e-250))
+              near.push_back(ids_[j]);
+            else if(!(filter && d2 > r2d * (1 + 1e-12)) && compare_sq(points_[k], points_[j], r2) != CGAL::LARGER)
+              near.push_back(ids_[j]);
+          }
+          std::sort(near.begin(), near.end());
+        }
+        else
+          vertices_near_point(points_[k], radius, std::back_inserter(near));
+        callback(std::size_t(ids_[k]), static_cast<const std::vector<std::size_t>&>(near));
+      }
+    }
+  }
+
   /// writes to `out`, in increasing order, the index of every point within `radius` of the
   /// closed segment `[a,b]`, choosing the candidate boxes with `strategy`.
   template <typename OutputIterator>

@@ -190,23 +190,34 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   {
     typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
     const FT eps2 = eps * eps;
+    // With double coordinates, a squared length far above eps2 (computed in double, within a
+    // few ulps of the exact value) is decided without the exact predicate.
+    const double eps2d = CGAL::to_double(eps2);
+    constexpr bool double_coordinates = std::is_same<FT, double>::value;
     for(size_type t = 0; t < tables.number_of_triangles(); ++t)
       for(int i = 0; i < 3; ++i) {
         const size_type u = tables.neighbor(t, i);
         if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
-        if(compare_sq(point(tables.vertex(t, i)), point(tables.vertex(t, (i + 1) % 3)), eps2) != CGAL::LARGER)
-          ++report.short_edges;
+        const Point& p = point(tables.vertex(t, i));
+        const Point& q = point(tables.vertex(t, (i + 1) % 3));
+        if constexpr(double_coordinates) {
+          const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if(d2 > eps2d * (1 + 1e-12) && d2 > 1e-250) continue;
+        }
+        if(compare_sq(p, q, eps2) != CGAL::LARGER) ++report.short_edges;
       }
   }
 
   // 1. Candidates: the end points of border edges, in increasing index order.
   std::vector<size_type> candidates;
-  for(const Adjacency_tables::Edge& e : tables.border_edges()) {
-    candidates.push_back(tables.vertex(e.triangle, e.index));
-    candidates.push_back(tables.vertex(e.triangle, (e.index + 1) % 3));
+  {
+    std::vector<char> on_border(points.size(), 0);
+    for(size_type t = 0; t < tables.number_of_triangles(); ++t)
+      for(int i = 0; i < 3; ++i)
+        if(tables.is_border_edge(t, i)) on_border[tables.vertex(t, i)] = on_border[tables.vertex(t, (i + 1) % 3)] = 1;
+    for(size_type v = 0; v < points.size(); ++v) if(on_border[v]) candidates.push_back(v);
   }
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   report.candidate_vertices = candidates.size();
   if(candidates.size() < 2) { report.border_edges_after = report.border_edges_before; return report; }
 
@@ -226,16 +237,16 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   candidate_points.reserve(candidates.size());
   for(size_type v : candidates) candidate_points.push_back(point(v));
   const Octree<Kernel> tree(candidate_points, CGAL::Identity_property_map<Point>(), kernel);
-  std::vector<std::size_t> row_begin(candidates.size() + 1, 0);
   std::vector<std::uint32_t> row;
-  std::vector<std::size_t> found;
   std::vector<std::uint32_t> parent(candidates.size());
   std::iota(parent.begin(), parent.end(), 0u);
   auto find = [&](std::uint32_t x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
   std::vector<std::pair<std::uint32_t, std::uint32_t>> same_triangle_pairs;
-  for(std::size_t c = 0; c < candidates.size(); ++c) {
-    found.clear();
-    tree.vertices_near_point(candidate_points[c], eps, std::back_inserter(found));
+  // One self-join over the octree (points visited in Morton order); the rows are filled in that
+  // order, then indexed by candidate.
+  std::vector<std::size_t> row_start(candidates.size()), row_end(candidates.size());
+  tree.for_each_neighbourhood(eps, [&](std::size_t c, const std::vector<std::size_t>& found) {
+    row_start[c] = row.size();
     for(std::size_t d : found) {
       if(d == c) continue;
       if(share_triangle(candidates[c], candidates[d])) {
@@ -246,27 +257,36 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       const std::uint32_t a = find(static_cast<std::uint32_t>(c)), b = find(static_cast<std::uint32_t>(d));
       if(a != b) parent[std::max(a, b)] = std::min(a, b);
     }
-    row_begin[c + 1] = row.size();
-  }
+    row_end[c] = row.size();
+  });
   auto neighbours = [&](std::uint32_t c) {
-    return std::make_pair(row.begin() + static_cast<std::ptrdiff_t>(row_begin[c]),
-                          row.begin() + static_cast<std::ptrdiff_t>(row_begin[c + 1]));
+    return std::make_pair(row.begin() + static_cast<std::ptrdiff_t>(row_start[c]),
+                          row.begin() + static_cast<std::ptrdiff_t>(row_end[c]));
   };
 
-  // Components, each as a list of local ids.
-  std::vector<std::vector<std::uint32_t>> components;
+  // Components as compressed rows: the candidates of component k are
+  // component_members[component_begin[k] .. component_begin[k+1]), in increasing order.
+  std::vector<std::uint32_t> component_begin, component_members(candidates.size());
   {
     std::vector<std::uint32_t> id_of_root(candidates.size(), static_cast<std::uint32_t>(-1));
+    std::vector<std::uint32_t> component_of(candidates.size());
+    std::uint32_t count = 0;
     for(std::uint32_t c = 0; c < candidates.size(); ++c) {
       const std::uint32_t r = find(c);
-      if(id_of_root[r] == static_cast<std::uint32_t>(-1)) {
-        id_of_root[r] = static_cast<std::uint32_t>(components.size());
-        components.emplace_back();
-      }
-      components[id_of_root[r]].push_back(c);
+      if(id_of_root[r] == static_cast<std::uint32_t>(-1)) id_of_root[r] = count++;
+      component_of[c] = id_of_root[r];
     }
+    component_begin.assign(count + 1, 0);
+    for(std::uint32_t c = 0; c < candidates.size(); ++c) ++component_begin[component_of[c] + 1];
+    for(std::uint32_t k = 0; k < count; ++k) component_begin[k + 1] += component_begin[k];
+    std::vector<std::uint32_t> fill(component_begin.begin(), component_begin.end() - 1);
+    for(std::uint32_t c = 0; c < candidates.size(); ++c) component_members[fill[component_of[c]]++] = c;
   }
-  std::vector<bool> ambiguous_component(components.size(), false);
+  const std::size_t number_of_components = component_begin.size() - 1;
+  auto component = [&](std::size_t k) {
+    return std::make_pair(component_members.begin() + component_begin[k], component_members.begin() + component_begin[k + 1]);
+  };
+  std::vector<bool> ambiguous_component(number_of_components, false);
   for(const auto& pr : same_triangle_pairs) {
     ++report.refused_same_triangle;
     visitor.on_refusal(candidates[pr.second], candidates[pr.first], Refusal_reason::SAME_TRIANGLE);
@@ -280,10 +300,10 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   std::vector<bool> assigned(candidates.size(), false);
   std::vector<std::uint32_t> remaining, members;
   std::uint32_t cluster_id = 0;
-  for(std::size_t k = 0; k < components.size(); ++k) {
-    const auto& comp = components[k];
-    if(comp.size() < 2) continue;
-    remaining = comp;
+  for(std::size_t k = 0; k < number_of_components; ++k) {
+    const auto comp = component(k);
+    if(comp.second - comp.first < 2) continue;
+    remaining.assign(comp.first, comp.second);
     std::size_t rounds = 0;
     while(remaining.size() > 1) {
       ++rounds;
@@ -322,10 +342,9 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     }
     if(rounds > 1 || !remaining.empty()) ambiguous_component[k] = true;
   }
-  for(std::size_t k = 0; k < components.size(); ++k)
+  for(std::size_t k = 0; k < number_of_components; ++k)
     if(ambiguous_component[k]) {
-      std::size_t smallest = candidates[components[k][0]];
-      for(std::uint32_t c : components[k]) smallest = std::min<std::size_t>(smallest, candidates[c]);
+      const std::size_t smallest = candidates[*component(k).first]; // members are in increasing order
       report.ambiguous_sites.push_back(smallest);
     }
   std::sort(report.ambiguous_sites.begin(), report.ambiguous_sites.end());
@@ -335,10 +354,12 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   // 4. Geometric validity: no triangle may become degenerate or flip; refuse until stable.
   auto final_vertex = [&](size_type v) { return target[v] == none ? v : target[v]; };
   std::vector<size_type> touched;
-  for(size_type v : candidates)
-    if(target[v] != none) for(size_type t : tables.triangles_around_vertex(v)) touched.push_back(t);
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  {
+    std::vector<char> is_touched(tables.number_of_triangles(), 0);
+    for(size_type v : candidates)
+      if(target[v] != none) for(size_type t : tables.triangles_around_vertex(v)) is_touched[t] = 1;
+    for(size_type t = 0; t < tables.number_of_triangles(); ++t) if(is_touched[t]) touched.push_back(t);
+  }
   for(bool changed = true; changed;) {
     changed = false;
     for(size_type t : touched) {
@@ -358,19 +379,29 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     }
   }
 
-  // 5. Apply the merges, in increasing index order.
-  std::vector<size_type> representatives;
+  // 5. Apply the merges, in increasing index order. Few merges: local updates of the tables
+  // (`replace_vertex`, the patent's rules (a)-(c)). Many merges (an exploded soup): the
+  // triangles are rewritten once and the tables rebuilt, which is linear, where thousands of
+  // local updates around the same representatives are not. Both give the same tables.
+  std::size_t number_of_merges = 0;
+  for(size_type v : candidates) if(target[v] != none) ++number_of_merges;
+  const bool rebuild = number_of_merges > tables.number_of_triangles() / 16 + 64;
+  if(rebuild) {
+    std::vector<Adjacency_tables::Triangle> rewritten(tables.triangles());
+    for(Adjacency_tables::Triangle& tr : rewritten)
+      for(size_type& v : tr) v = final_vertex(v);
+    tables = Adjacency_tables(rewritten, points.size());
+  }
+  std::vector<char> is_representative(points.size(), 0);
   for(size_type v : candidates) {
     if(target[v] == none) continue;
     const size_type r = target[v];
-    tables.replace_vertex(v, r);
+    if(!rebuild) tables.replace_vertex(v, r);
     visitor.on_merge(v, r);
     ++report.merged_vertices;
-    representatives.push_back(r);
+    if(!is_representative[r]) { is_representative[r] = 1; ++report.clusters; }
     report.max_displacement = std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(point(v), point(r)))));
   }
-  std::sort(representatives.begin(), representatives.end());
-  report.clusters = static_cast<std::size_t>(std::unique(representatives.begin(), representatives.end()) - representatives.begin());
   // Write the triangles back.
   for(size_type t : touched) {
     const Adjacency_tables::Triangle& tr = tables.triangle(t);
