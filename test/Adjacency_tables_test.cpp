@@ -580,7 +580,7 @@ TEST(CommandLine, BadFilesExitWithCode2AndAMessage)
     {write("garbage.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zero\n"), ":4:"},
     {write("noend.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendfacet\n"),
      "endloop"},
-    {write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), "bad.off: malformed"},
+    {write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"), "bad.off:6: face 0 of 1 has vertex index 7, out of range"},
     {write("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n"),
      "non-finite"},
     {dir + "/missing.stl", "cannot open"},

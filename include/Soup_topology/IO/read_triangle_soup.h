@@ -6,6 +6,7 @@
 #ifndef SOUP_TOPOLOGY_IO_READ_TRIANGLE_SOUP_H
 #define SOUP_TOPOLOGY_IO_READ_TRIANGLE_SOUP_H
 
+#include <Soup_topology/IO/OFF.h>
 #include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/IO/STL.h>
 #include <Soup_topology/IO/VRML.h>
@@ -56,8 +57,9 @@ inline std::string file_extension(const std::string& filename)
 /// indexed triangle soup whose exactly equal points are merged: `points` holds distinct points,
 /// `triangles` index triples of distinct vertices. Polygons are fan-triangulated.
 ///
-/// STL goes through `read_STL_triangles()` and `index_triangles()`; the other formats through
-/// `CGAL::IO::read_polygon_soup()` and `merge_duplicate_points()`; VRML through `read_VRML()`
+/// STL goes through `read_STL_triangles()` and `index_triangles()`; OFF through
+/// `read_OFF_polygons()`, OBJ and PLY through `CGAL::IO::read_polygon_soup()`, then
+/// `merge_duplicate_points()`; VRML through `read_VRML()`
 /// (every shape's points appended, then merged the same way).
 /// \throws Read_error if the file cannot be read or is malformed; Invalid_input for an index out of
 /// range or a non-finite coordinate. `points` and `triangles` are unchanged then.
@@ -89,13 +91,18 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
       if(!probe) throw Read_error(filename + ": cannot open the file for reading");
     }
     std::vector<std::vector<std::size_t>> polygons;
-    bool ok = false;
-    try {
-      ok = CGAL::IO::read_polygon_soup(filename, pts, polygons, CGAL::parameters::verbose(false));
-    } catch(const std::exception& e) {
-      throw Read_error(filename + ": malformed " + report.format + " file (" + e.what() + ")");
+    if(report.format == "off") {
+      // Our reader: it checks the header against the data before allocating (see IO/OFF.h).
+      read_OFF_polygons(read_file_contents(filename), pts, polygons, filename);
+    } else {
+      bool ok = false;
+      try {
+        ok = CGAL::IO::read_polygon_soup(filename, pts, polygons, CGAL::parameters::verbose(false));
+      } catch(const std::exception& e) {
+        throw Read_error(filename + ": malformed " + report.format + " file (" + e.what() + ")");
+      }
+      if(!ok) throw Read_error(filename + ": malformed or unsupported " + report.format + " file");
     }
-    if(!ok) throw Read_error(filename + ": malformed or unsupported " + report.format + " file");
     report.input_polygons = polygons.size();
     report.input_vertices = pts.size();
     Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
