@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -52,17 +53,35 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
   constexpr bool has_absolute = !is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value;
   constexpr bool has_relative = !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value;
   static_assert(!(has_absolute && has_relative), "give either snapping_tolerance or relative_tolerance, not both");
+  // The predicates compare squared distances with the squared tolerance: it must not overflow
+  // (an infinite bound reaches GMP's exact conversion, which raises SIGFPE on infinity).
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", x);
+    return std::string(buffer);
+  };
+  const auto check_square = [&](double e, const char* what) {
+    if(!std::isfinite(e * e))
+      throw Invalid_input(std::string(what) + " is too large (" + text(e) + "): its square overflows a double");
+  };
   if constexpr(has_absolute) {
     const FT eps = FT(get_parameter(np, CGAL::internal_np::snapping_tolerance));
     const double e = CGAL::to_double(eps);
     if(!(e >= 0) || !std::isfinite(e))
       throw Invalid_input("the tolerance must be a finite number >= 0 (got " + std::to_string(e) + ")");
+    check_square(e, "the tolerance");
     return eps;
   } else if constexpr(has_relative) {
     const double r = static_cast<double>(get_parameter(np, internal_np::relative_tolerance));
     if(!(r >= 0) || !std::isfinite(r))
       throw Invalid_input("the relative tolerance must be a finite number >= 0 (got " + std::to_string(r) + ")");
-    return FT(r * bounding_box_diagonal(points, pm));
+    if(r == 0) return FT(0);
+    const double e = r * bounding_box_diagonal(points, pm);
+    if(!std::isfinite(e))
+      throw Invalid_input("the relative tolerance " + text(r) + " gives a non-finite absolute tolerance "
+                          "(the bounding-box diagonal overflows a double)");
+    check_square(e, "the absolute tolerance given by the relative tolerance");
+    return FT(e);
   } else {
     return FT(0);
   }
