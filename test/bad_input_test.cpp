@@ -1,0 +1,590 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The bad-input matrix (doc/Soup_topology/Bad_input.md), for the library and for the
+// command-line tool: every broken file, index, coordinate or tolerance gets a clear error that
+// names what is wrong and where; the caller's containers and an existing output file are left as
+// they were; the tool exits with code 2. Headers that claim billions of elements fail at once,
+// without allocating.
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/IO/OFF.h>
+#include <Soup_topology/IO/STL.h>
+#include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/reconstruct_topology.h>
+
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+namespace fs = std::filesystem;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool address_sanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool address_sanitizer = true;
+#else
+constexpr bool address_sanitizer = false;
+#endif
+#else
+constexpr bool address_sanitizer = false;
+#endif
+
+std::string cli() { return SOUP_TOPOLOGY_CLI; }
+
+std::string write_file(const std::string& folder, const std::string& name, const std::string& content)
+{
+  const std::string path = folder + "/" + name;
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  return path;
+}
+
+std::string read_whole(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string binary_stl(std::uint32_t announced, std::size_t facets, float x = 0.f)
+{
+  std::string data(80, ' ');
+  data.append(reinterpret_cast<const char*>(&announced), 4);
+  for(std::size_t f = 0; f < facets; ++f) {
+    const float c[12] = {0, 0, 1, x, 0, 0, 1, 0, 0, 0, 1, float(f)};
+    data.append(reinterpret_cast<const char*>(c), sizeof c);
+    data.append(2, '\0');
+  }
+  return data;
+}
+
+std::string ascii_facet(const std::string& third_vertex = "0 1 0", bool endloop = true, bool endfacet = true)
+{
+  return std::string("facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex ") + third_vertex + "\n" +
+         (endloop ? "endloop\n" : "") + (endfacet ? "endfacet\n" : "");
+}
+
+const std::string good_off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+
+// Data the reader must not touch when it throws.
+struct Sentinel
+{
+  std::vector<Point> points{Point(7, 7, 7), Point(8, 8, 8), Point(9, 9, 9)};
+  std::vector<Triangle> triangles{{0, 1, 2}};
+  bool untouched() const
+  {
+    return points == std::vector<Point>{Point(7, 7, 7), Point(8, 8, 8), Point(9, 9, 9)} &&
+           triangles == std::vector<Triangle>{{0, 1, 2}};
+  }
+};
+
+// The message of the exception `read_triangle_soup` throws on `content` written to `name`
+// ("" if none); checks that the caller's containers are unchanged.
+template <class Exception = std::exception>
+std::string read_error(const std::string& name, const std::string& content)
+{
+  const std::string folder = soup_test::temporary_folder("bad_input_read");
+  const std::string path = write_file(folder, name, content);
+  Sentinel s;
+  std::string message;
+  try {
+    ST::IO::read_triangle_soup(path, s.points, s.triangles);
+  } catch(const Exception& e) {
+    message = e.what();
+  }
+  EXPECT_TRUE(s.untouched()) << name;
+  fs::remove_all(folder);
+  return message;
+}
+
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE(std::string(text).find(part), std::string::npos) << "'" << (text) << "' does not contain '" << (part) << "'"
+
+// ---------------------------------------------------------------------------------------------
+// Readers
+
+TEST(BadInputSTL, EmptyFile)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("empty.stl", ""), "empty.stl: binary STL shorter than its 84-byte header (0 bytes)");
+}
+
+TEST(BadInputSTL, ZeroTrianglesIsNotAnError)
+{
+  const std::string folder = soup_test::temporary_folder("bad_input_zero");
+  for(const std::string& content : {std::string("solid empty\nendsolid empty\n"), binary_stl(0, 0)}) {
+    const std::string path = write_file(folder, "zero.stl", content);
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(path, points, triangles);
+    EXPECT_EQ(r.input_triangles, 0u);
+    EXPECT_TRUE(points.empty());
+    EXPECT_TRUE(triangles.empty());
+  }
+  fs::remove_all(folder);
+}
+
+TEST(BadInputSTL, HeaderOnly)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("header.stl", std::string(80, ' ')),
+                  "binary STL shorter than its 84-byte header (80 bytes)");
+}
+
+TEST(BadInputSTL, CountLargerThanTheData)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("more.stl", binary_stl(3, 2)),
+                  "more.stl: binary STL header announces 3 facets, the file holds 2 complete facets (truncated at facet 2)");
+}
+
+TEST(BadInputSTL, CountSmallerThanTheData)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("less.stl", binary_stl(1, 2)),
+                  "less.stl: binary STL header announces 1 facets, the file holds 50 bytes more than that");
+}
+
+TEST(BadInputSTL, MissingEndloopAndEndfacet)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("a.stl", "solid a\n" + ascii_facet("0 1 0", false) + "endsolid a\n"),
+                  "a.stl:7: expected 'endloop', found 'endfacet'");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("a.stl", "solid a\n" + ascii_facet("0 1 0", true, false) + "endsolid a\n"),
+                  "a.stl:8: expected 'endfacet', found 'endsolid'");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("a.stl", "solid a\n" + ascii_facet()),
+                  "a.stl:9: unexpected end of file, expected 'endsolid'");
+}
+
+TEST(BadInputSTL, GarbageNumbers)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("g.stl", "solid g\n" + ascii_facet("0 1.2.3 0") + "endsolid g\n"),
+                  "g.stl:6: '1.2.3' is not a number");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("g.stl", "solid g\n" + ascii_facet("0 1") + "endsolid g\n"),
+                  "g.stl:7: 'endloop' is not a number");
+}
+
+TEST(BadInputSTL, NonFiniteCoordinates)
+{
+  EXPECT_CONTAINS(read_error<ST::Invalid_input>("n.stl", "solid n\n" + ascii_facet("0 nan 0") + "endsolid n\n"),
+                  "n.stl: facet 0 has a non-finite coordinate");
+  EXPECT_CONTAINS(read_error<ST::Invalid_input>("i.stl", "solid i\n" + ascii_facet() + ascii_facet("-inf 1 0") + "endsolid i\n"),
+                  "i.stl: facet 1 has a non-finite coordinate");
+  EXPECT_CONTAINS(read_error<ST::Invalid_input>("b.stl", binary_stl(2, 2, std::numeric_limits<float>::quiet_NaN())),
+                  "b.stl: facet 0 has a non-finite coordinate");
+}
+
+TEST(BadInputSTL, FourBillionFacetsFailAtOnce)
+{
+  // The reader compares the count with the size before allocating anything.
+  const std::string data = binary_stl(4000000000u, 1);
+  std::vector<std::array<Point, 3>> triangles;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    ST::IO::read_STL_triangles(data, triangles, "big.stl");
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Read_error& e) {
+    EXPECT_CONTAINS(e.what(), "big.stl: binary STL header announces 4000000000 facets, the file holds 1 complete facets");
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_TRUE(triangles.empty());
+}
+
+TEST(BadInputOFF, EmptyFileAndMissingHeader)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("e.off", ""), "e.off:1: empty file, expected the OFF header");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("e.off", "# only a comment\n\n"), "e.off:1: empty file");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("h.off", "PLY\n3 1 0\n"), "h.off:1: expected the keyword OFF");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("b.off", "OFF BINARY\n"), "b.off:1: binary OFF is not supported");
+}
+
+TEST(BadInputOFF, ZeroFacesIsNotAnError)
+{
+  const std::string folder = soup_test::temporary_folder("bad_input_zero_off");
+  const std::string path = write_file(folder, "zero.off", "OFF\n0 0 0\n");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  EXPECT_EQ(ST::IO::read_triangle_soup(path, points, triangles).input_polygons, 0u);
+  EXPECT_TRUE(triangles.empty());
+  fs::remove_all(folder);
+}
+
+TEST(BadInputOFF, NegativeAndOutOfRangeIndices)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("n.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"),
+                  "n.off:6: face 0 of 1 has a negative vertex index (-1)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("o.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 7\n"),
+                  "o.off:7: face 1 of 2 has vertex index 7, out of range (3 vertices)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("o.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 99999999999999999999\n"),
+                  "o.off:6: '99999999999999999999' is too large");
+}
+
+TEST(BadInputOFF, WrongCountLine)
+{
+  // More vertices announced than given: the face line is read as a vertex, then the faces are missing.
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("v.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                  "v.off:6: unexpected end of file, expected number of corners of face 0 of 1");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("f.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                  "f.off:6: unexpected end of file, expected number of corners of face 1 of 2");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("s.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n"),
+                  "s.off:7: data after the 1 faces the header announces ('3'): is the count line wrong?");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("x.off", "OFF\n3 x 0\n"),
+                  "x.off:2: 'x' is not an integer (number of faces in the count line)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("m.off", "OFF\n-3 1 0\n"),
+                  "m.off:2: negative number of vertices (-3) in the count line");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("c.off", "OFF\n"), "c.off:1: unexpected end of file, expected the count line");
+}
+
+TEST(BadInputOFF, GarbageAndNonFiniteNumbers)
+{
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("g.off", "OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n"),
+                  "g.off:4: 'x' is not a number (vertex 1 of 3)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("n.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 nan 0\n3 0 1 2\n"),
+                  "n.off:5: non-finite coordinate 'nan' (vertex 2 of 3)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("i.off", "OFF\n3 1 0\n0 0 0\n1e999 0 0\n0 1 0\n3 0 1 2\n"),
+                  "i.off:4: non-finite coordinate '1e999' (vertex 1 of 3)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("w.off", "4OFF\n3 1 0\n0 0 0 1\n1 0 0 0\n0 1 0 1\n3 0 1 2\n"),
+                  "w.off:4: homogeneous coordinate 0 (vertex 1 of 3)");
+}
+
+TEST(BadInputOFF, ShortFacesAndRepeatedIndicesAreCountedNotRead)
+{
+  // A face of fewer than 3 corners is skipped; a repeated index makes a collapsed triangle,
+  // removed; both are counted in the report.
+  const std::string folder = soup_test::temporary_folder("bad_input_faces");
+  const std::string path = write_file(folder, "f.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                                       "2 0 1\n3 0 0 1\n3 0 1 2\n1 3\n");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(path, points, triangles);
+  EXPECT_EQ(r.input_polygons, 4u);
+  EXPECT_EQ(r.skipped_polygons, 2u);
+  EXPECT_EQ(r.collapsed_triangles, 1u);
+  EXPECT_EQ(triangles, (std::vector<Triangle>{{0, 1, 2}}));
+  fs::remove_all(folder);
+}
+
+TEST(BadInputOFF, FourBillionVerticesFailAtOnce)
+{
+  // CGAL's reader resizes its vectors to the header's counts; ours checks them against the size.
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  const auto start = std::chrono::steady_clock::now();
+  for(const std::string& text : {std::string("OFF\n4000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                                 std::string("OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                                 std::string("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n")}) {
+    try {
+      ST::IO::read_OFF_polygons(text, points, polygons, "big.off");
+      ADD_FAILURE() << "no error";
+    } catch(const ST::IO::Read_error& e) {
+      EXPECT_TRUE(std::strstr(e.what(), "announces") != nullptr) << e.what();
+    }
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_TRUE(points.empty());
+  EXPECT_TRUE(polygons.empty());
+}
+
+TEST(BadInputOFF, ReadsTheSharedFilesLikeCGAL)
+{
+  // Our OFF reader against CGAL's on every OFF file of the shared data (plain, NOFF, quads, comments).
+  for(const char* file : {"cgal_repair/data_repair/nm_edges_triple.off", "cgal_repair/data_stitching/pinched.off",
+                                 "cgal_repair/quads_to_stitch.off", "cgal_repair/data_stitching/deg_border.off",
+                                 "cad/ALSTOM_TEST4.off", "clean/elephant.off"}) {
+    const std::string path = soup_test::data_file(file);
+    std::vector<Point> ours, theirs;
+    std::vector<std::vector<std::size_t>> our_polygons, their_polygons;
+    ST::IO::read_OFF_polygons(ST::IO::read_file_contents(path), ours, our_polygons, path);
+    ASSERT_TRUE(CGAL::IO::read_OFF(path, theirs, their_polygons)) << file;
+    EXPECT_EQ(ours, theirs) << file;
+    EXPECT_EQ(our_polygons, their_polygons) << file;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The library: reconstruct_topology
+
+struct Small_soup
+{
+  std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)};
+  std::vector<Triangle> triangles{{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+};
+
+template <class Points, class Triangles, class Np>
+std::string pipeline_error(Points points, Triangles triangles, const Np& np)
+{
+  const Points points_before = points;
+  const Triangles triangles_before = triangles;
+  std::string message;
+  try {
+    ST::reconstruct_topology(points, triangles, np);
+  } catch(const ST::Invalid_input& e) {
+    message = e.what();
+  }
+  // Bit for bit (NaN included).
+  EXPECT_EQ(points.size(), points_before.size());
+  EXPECT_TRUE(std::memcmp(points.data(), points_before.data(), sizeof(Point) * points.size()) == 0);
+  EXPECT_EQ(triangles, triangles_before);
+  return message;
+}
+
+TEST(BadInputPipeline, IndicesOutOfRangeNegativeOrRepeated)
+{
+  const auto np = CGAL::parameters::snapping_tolerance(0.1);
+  Small_soup s;
+  s.triangles[2] = {0, 2, 4};
+  EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, np), "face 2: vertex index 4 is out of range (4 points)");
+  s = Small_soup();
+  s.triangles[1] = {3, 1, 3};
+  EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, np), "face 1 repeats a vertex index (3, 1, 3)");
+  std::vector<std::array<int, 3>> signed_triangles{{0, 1, 2}, {0, -1, 3}};
+  EXPECT_CONTAINS(pipeline_error(s.points, signed_triangles, np), "face 1: negative vertex index -1");
+  std::vector<std::vector<std::size_t>> polygons{{0, 1, 2}, {0, 1}};
+  EXPECT_CONTAINS(pipeline_error(s.points, polygons, np), "face 1 has 2 vertices; a triangle soup needs exactly 3");
+}
+
+TEST(BadInputPipeline, NonFiniteCoordinates)
+{
+  for(double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                    -std::numeric_limits<double>::infinity()}) {
+    Small_soup s;
+    s.points[3] = Point(0, bad, 1);
+    EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, CGAL::parameters::default_values()),
+                    "point 3 has a non-finite coordinate");
+  }
+}
+
+TEST(BadInputPipeline, InvalidTolerances)
+{
+  Small_soup s;
+  for(double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, CGAL::parameters::snapping_tolerance(bad)),
+                    "the tolerance must be a finite number >= 0");
+  for(double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, ST::parameters::relative_tolerance(bad)),
+                    "the relative tolerance must be a finite number >= 0");
+}
+
+TEST(BadInputPipeline, HugeToleranceIsRefusedNotACrash)
+{
+  // Regression: a tolerance whose square overflows reached GMP's conversion of infinity in the
+  // exact fallback of Compare_squared_distance_3 and the process died of SIGFPE.
+  Small_soup s;
+  EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, CGAL::parameters::snapping_tolerance(1e300)),
+                  "the tolerance is too large (1e+300): its square overflows a double");
+  // A bounding box too large for a double diagonal, with a relative tolerance.
+  s.points[0] = Point(-1e308, 0, 0);
+  s.points[1] = Point(1e308, 0, 0);
+  EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, ST::parameters::relative_tolerance(1e-6)),
+                  "gives a non-finite absolute tolerance");
+  s.points = {Point(0, 0, 0), Point(0.7e154, 0, 0), Point(0, 0.7e154, 0), Point(0, 0, 0.7e154)};
+  EXPECT_CONTAINS(pipeline_error(s.points, s.triangles, ST::parameters::relative_tolerance(2.0)),
+                  "the absolute tolerance given by the relative tolerance is too large (2.42487e+154)");
+  // A relative tolerance of 0 is the exact weld, whatever the box.
+  s.points[0] = Point(-1e308, 0, 0);
+  std::vector<Point> points = s.points;
+  std::vector<Triangle> triangles = s.triangles;
+  EXPECT_EQ(ST::reconstruct_topology(points, triangles, ST::parameters::relative_tolerance(0.0)).output_triangles, 4u);
+}
+
+TEST(BadInputPipeline, ToleranceLargerThanTheModelKeepsItValid)
+{
+  // Not an error: every weld that would degenerate or flip a triangle is refused (and counted).
+  // Two unit squares side by side with a gap of 0.01, tolerance 10 times the model.
+  std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                            Point(1.01, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1.01, 1, 0)};
+  std::vector<Triangle> triangles{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const std::vector<Point> input = points;
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(30.0));
+  EXPECT_GT(r.refused_welds(), 0u);
+  EXPECT_LE(r.max_displacement, 30.0);
+  for(const Triangle& t : triangles) EXPECT_FALSE(CGAL::collinear(points[t[0]], points[t[1]], points[t[2]]));
+  EXPECT_EQ(triangles.size(), 4u);
+}
+
+TEST(BadInputPipeline, EmptySoupIsANoOp)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.5));
+  EXPECT_EQ(r.output_triangles, 0u);
+  EXPECT_EQ(r.output_points, 0u);
+}
+
+TEST(BadInputTables, RepeatedAndOutOfRangeIndices)
+{
+  std::vector<Triangle> triangles{{0, 1, 2}, {2, 1, 2}};
+  EXPECT_THROW(ST::Adjacency_tables(triangles, 3), ST::Invalid_input);
+  triangles[1] = {0, 1, 3};
+  EXPECT_THROW(ST::Adjacency_tables(triangles, 3), ST::Invalid_input);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The command-line tool
+
+struct Cli_result
+{
+  std::string output;
+  int code;
+};
+
+Cli_result run_cli(const std::string& arguments)
+{
+  const auto r = soup_test::run_command("'" + cli() + "' " + arguments + " 2>&1");
+  return {r.first, r.second};
+}
+
+class BadInputCli : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    if(cli().empty()) GTEST_SKIP() << "the command-line tool is not built";
+    folder = soup_test::temporary_folder("bad_input_cli");
+    output = write_file(folder, "out.off", "previous content\n");
+  }
+  void TearDown() override
+  {
+    if(!folder.empty()) fs::remove_all(folder);
+  }
+  // repair on `content` written to `name` fails with exit code 2, a message containing `part`,
+  // and leaves the existing output file and the folder as they were.
+  void expect_refused(const std::string& name, const std::string& content, const std::string& part,
+                      const std::string& options = "")
+  {
+    const std::string input = write_file(folder, name, content);
+    const Cli_result r = run_cli("repair '" + input + "' -o '" + output + "' " + options);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_CONTAINS(r.output, part);
+    EXPECT_EQ(read_whole(output), "previous content\n") << name;
+    EXPECT_EQ(read_whole(input), content) << name;
+    std::size_t files = 0;
+    for(const auto& entry : fs::directory_iterator(folder)) { (void)entry; ++files; }
+    EXPECT_EQ(files, 2u) << "a temporary file was left behind";
+    fs::remove(input);
+  }
+  std::string folder, output;
+};
+
+TEST_F(BadInputCli, BrokenFiles)
+{
+  expect_refused("empty.stl", "", "empty.stl: binary STL shorter than its 84-byte header (0 bytes)");
+  expect_refused("empty.off", "", "empty.off:1: empty file, expected the OFF header");
+  expect_refused("header.stl", std::string(80, ' '), "header.stl: binary STL shorter than its 84-byte header");
+  expect_refused("more.stl", binary_stl(3, 2), "more.stl: binary STL header announces 3 facets");
+  expect_refused("less.stl", binary_stl(1, 2), "less.stl: binary STL header announces 1 facets, the file holds 50 bytes more");
+  expect_refused("loop.stl", "solid a\n" + ascii_facet("0 1 0", false) + "endsolid a\n", "loop.stl:7: expected 'endloop'");
+  expect_refused("facet.stl", "solid a\n" + ascii_facet("0 1 0", true, false) + "endsolid a\n",
+                 "facet.stl:8: expected 'endfacet'");
+  expect_refused("garbage.stl", "solid g\n" + ascii_facet("0 1.2.3 0") + "endsolid g\n", "garbage.stl:6: '1.2.3' is not a number");
+  expect_refused("nan.stl", "solid n\n" + ascii_facet("0 nan 0") + "endsolid n\n",
+                 "invalid input: " + folder + "/nan.stl: facet 0 has a non-finite coordinate");
+  expect_refused("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n", "inf.off:5: non-finite coordinate 'inf'");
+  expect_refused("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "neg.off:6: face 0 of 1 has a negative vertex index (-1)");
+  expect_refused("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "range.off:6: face 0 of 1 has vertex index 3, out of range");
+  expect_refused("count.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "count.off:6: unexpected end of file, expected number of corners of face 1 of 2");
+  expect_refused("extra.off", good_off + "3 2 1 0\n", "extra.off:7: data after the 1 faces the header announces");
+  expect_refused("unknown.xyz", "1 2 3\n", "unknown file extension 'xyz'");
+}
+
+TEST_F(BadInputCli, MissingInput)
+{
+  const Cli_result r = run_cli("repair '" + folder + "/missing.stl' -o '" + output + "'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.output, "missing.stl: cannot open the file for reading");
+  EXPECT_EQ(read_whole(output), "previous content\n");
+}
+
+TEST_F(BadInputCli, InvalidTolerances)
+{
+  for(const char* t : {"-1", "nan", "inf", "-inf"})
+    expect_refused("t.off", good_off, "the tolerance must be a finite number >= 0, got '" + std::string(t) + "'",
+                   "--tolerance '" + std::string(t) + "'");
+  for(const char* t : {"1e999", "abc", "", "0.1x"})
+    expect_refused("t.off", good_off, "--tolerance: '" + std::string(t) + "' is not a number",
+                   "--tolerance '" + std::string(t) + "'");
+  expect_refused("t.off", good_off, "the tolerance is too large (1e+300)", "--tolerance 1e300");
+  expect_refused("t.off", good_off, "--relative-tolerance: the tolerance must be a finite number >= 0",
+                 "--relative-tolerance -0.5");
+  expect_refused("t.off", good_off, "give --tolerance or --relative-tolerance, not both",
+                 "--tolerance 1 --relative-tolerance 0.1");
+}
+
+TEST_F(BadInputCli, ToleranceLargerThanTheModelIsRefusedWeldByWeld)
+{
+  const std::string input = soup_test::data_file("cgal_repair/data_stitching/pinched.off");
+  const Cli_result r = run_cli("repair '" + input + "' -o '" + output + "' --tolerance 100 --json");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_GT(soup_test::json_integer(r.output, "refused_welds"), 0);
+  EXPECT_EQ(soup_test::json_integer(r.output, "output_triangles"), 102);
+  EXPECT_EQ(soup_test::json_integer(r.output, "max_displacement"), 0);
+}
+
+TEST_F(BadInputCli, UnwritableOutput)
+{
+  const std::string input = write_file(folder, "in.off", good_off);
+  // A folder that does not exist.
+  Cli_result r = run_cli("repair '" + input + "' -o '" + folder + "/missing/out.off'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.output, folder + "/missing/out.off: the output folder does not exist");
+  // A "folder" that is a regular file (root ignores permissions, not this).
+  r = run_cli("repair '" + input + "' -o '" + output + "/out.off'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.output, output + "/out.off: the output folder does not exist");
+  EXPECT_EQ(read_whole(output), "previous content\n");
+  // A report that cannot be written.
+  r = run_cli("repair '" + input + "' -o '" + folder + "/new.off' --report '" + output + "/r.json'");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_CONTAINS(r.output, output + "/r.json: the output folder does not exist");
+  EXPECT_EQ(read_whole(output), "previous content\n");
+}
+
+TEST_F(BadInputCli, OutputIsTheInput)
+{
+  const std::string input = write_file(folder, "same.off", good_off);
+  for(const std::string& out : {input, folder + "/./same.off"}) {
+    const Cli_result r = run_cli("repair '" + input + "' -o '" + out + "'");
+    EXPECT_EQ(r.code, 2);
+    EXPECT_CONTAINS(r.output, "the output file is the input file");
+    EXPECT_EQ(read_whole(input), good_off);
+  }
+}
+
+TEST_F(BadInputCli, HugeCountsFailFastUnderAMemoryLimit)
+{
+  // 4 billion facets or vertices announced in a tiny file: refused before any allocation, so a
+  // limit of 1 GB of address space is enough (not under AddressSanitizer, which reserves more).
+  const std::string stl = write_file(folder, "big.stl", binary_stl(4000000000u, 1));
+  const std::string off = write_file(folder, "big.off", "OFF\n4000000000 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string limit = address_sanitizer ? "" : "ulimit -v 1000000; ";
+  for(const std::string& file : {stl, off}) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto r = soup_test::run_command(limit + "'" + cli() + "' stats '" + file + "' 2>&1");
+    EXPECT_EQ(r.second, 2) << r.first;
+    EXPECT_CONTAINS(r.first, "4000000000");
+    EXPECT_CONTAINS(r.first, "announces");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  }
+}
+
+} // namespace
