@@ -360,8 +360,13 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       if(target[v] != none) for(size_type t : tables.triangles_around_vertex(v)) is_touched[t] = 1;
     for(size_type t = 0; t < tables.number_of_triangles(); ++t) if(is_touched[t]) touched.push_back(t);
   }
+  // Each pass checks every touched triangle against the moves of the previous pass and cancels
+  // the moves of all failing triangles at once, so the result does not depend on the order in
+  // which the triangles are stored.
+  std::vector<std::pair<size_type, Refusal_reason>> cancelled;
   for(bool changed = true; changed;) {
     changed = false;
+    cancelled.clear();
     for(size_type t : touched) {
       const Adjacency_tables::Triangle& tr = tables.triangle(t);
       const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
@@ -370,11 +375,16 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       if(internal::moves_keep_triangle<Kernel>(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), why))
         continue;
       for(size_type v : tr)
-        if(target[v] != none) {
-          visitor.on_refusal(v, target[v], why);
-          if(why == Refusal_reason::DEGENERATE) ++report.refused_degenerate; else ++report.refused_flip;
-          target[v] = none;
-        }
+        if(target[v] != none) cancelled.emplace_back(v, why);
+    }
+    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
+    std::sort(cancelled.begin(), cancelled.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first || (x.first == y.first && x.second < y.second); });
+    for(const auto& [v, why] : cancelled) {
+      if(target[v] == none) continue;
+      visitor.on_refusal(v, target[v], why);
+      if(why == Refusal_reason::DEGENERATE) ++report.refused_degenerate; else ++report.refused_flip;
+      target[v] = none;
       changed = true;
     }
   }

@@ -15,6 +15,8 @@
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
 
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -54,6 +56,22 @@ struct Pending_edge
   std::vector<Adjacency_tables::size_type> on_edge;
 };
 
+/// compares the distances from `p` to the segments [a,b] and [c,d], exactly: the squared
+/// distances are constructed in `Exact_predicates_exact_constructions_kernel` (a rare question:
+/// only a vertex near several border edges asks it).
+template <class Point>
+CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Point& a, const Point& b,
+                                                        const Point& c, const Point& d)
+{
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+  const CGAL::Cartesian_converter<Kernel, Exact> to_exact;
+  const Exact::Point_3 ep = to_exact(p);
+  const Exact::FT d1 = CGAL::squared_distance(ep, Exact::Segment_3(to_exact(a), to_exact(b)));
+  const Exact::FT d2 = CGAL::squared_distance(ep, Exact::Segment_3(to_exact(c), to_exact(d)));
+  return CGAL::compare(d1, d2);
+}
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyTJunctions
@@ -69,8 +87,8 @@ struct Pending_edge
 /// (`d` is within the tolerance of `[a,b]`, or `a` or `b` is within the tolerance of `[c,d]`: the
 /// two borders may be sampled independently), and that triangle does not overlap
 /// `t` (their apexes are not on the same side of the line `ab` in a common plane).
-/// A vertex near several border edges goes to the nearest one (distances compared in the
-/// kernel's `FT`; ties: the lexicographically smallest edge) and is counted as ambiguous. The accepted vertices of an edge are sorted along it
+/// A vertex near several border edges goes to the nearest one (distances compared exactly;
+/// ties: the lexicographically smallest edge) and is counted as ambiguous. The accepted vertices of an edge are sorted along it
 /// and `t` is split at each in turn by rule table (15), with the vertex table updated by rule
 /// table (17) (`Adjacency_tables::split_triangle()`). A vertex whose split would create a
 /// degenerate triangle or reverse a normal (exact predicates) is refused.
@@ -115,7 +133,6 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   typename Kernel::Coplanar_orientation_3 coplanar_orientation = kernel.coplanar_orientation_3_object();
   typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
   typename Kernel::Construct_segment_3 segment = kernel.construct_segment_3_object();
-  typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
 
   Split_report report;
   report.tolerance = CGAL::to_double(eps);
@@ -204,9 +221,8 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     std::uint32_t best = claims[i].second;
     for(std::size_t k = i + 1; k < j; ++k) {
       const std::uint32_t e = claims[k].second;
-      const CGAL::Comparison_result r =
-        CGAL::compare(squared_distance(point(c), segment(point(pending[e].a), point(pending[e].b))),
-                      squared_distance(point(c), segment(point(pending[best].a), point(pending[best].b))));
+      const CGAL::Comparison_result r = internal::compare_point_segment_distances(
+        point(c), point(pending[e].a), point(pending[e].b), point(pending[best].a), point(pending[best].b));
       if(r == CGAL::SMALLER || (r == CGAL::EQUAL && edge_less(e, best))) best = e;
     }
     if(j - i > 1) ++report.ambiguous;
