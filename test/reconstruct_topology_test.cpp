@@ -188,11 +188,19 @@ TEST(Pipeline, AlstomCadPatchesCloseTheirTJunctions)
   const ST::Reconstruction_report r =
     ST::reconstruct_topology(points, triangles, mesh, ST::parameters::relative_tolerance(1e-4));
   EXPECT_EQ(r.border_edges_before, 231u);
-  // The 6 patches become one piece; what stays open is the part's own boundary (its border
-  // vertices are farther than the tolerance from any other border edge).
-  EXPECT_LE(r.border_edges_after, 216u);
-  EXPECT_GE(r.t_junctions, 19u);
-  EXPECT_EQ(r.components, 1u);
+  // The 6 patches become at most 2 pieces; what stays open is the part's own boundary (its
+  // border vertices are farther than the tolerance from any other border edge) and 12 vertices
+  // within twice the tolerance of an edge's end point, where the minimum feature separation is
+  // not met (ALSTOM's shortest edges are about 1e-4 of the diagonal): left alone, reported.
+  EXPECT_LE(r.border_edges_after, 218u);
+  EXPECT_GE(r.t_junctions, 15u);
+  EXPECT_LE(r.components, 2u);
+  EXPECT_GT(r.ambiguous_t_junctions, 0u);
+  // With twice the tolerance the patches become one piece.
+  auto [p2, t2] = load<Point>("cad/ALSTOM_TEST4.off");
+  const ST::Reconstruction_report r2 = ST::reconstruct_topology(p2, t2, ST::parameters::relative_tolerance(2e-4));
+  EXPECT_EQ(r2.components, 1u);
+  EXPECT_LT(r2.border_edges_after, r.border_edges_after);
   EXPECT_LE(r.max_displacement, 1e-4 * diag);
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
   RecordProperty("border_edges_after", static_cast<int>(r.border_edges_after));

@@ -41,7 +41,7 @@ struct Split_report
   std::size_t refused_overlap = 0;        ///< vertices whose border edge would overlap the split triangle
   std::size_t refused_degenerate = 0;     ///< splits refused: a new triangle would be degenerate
   std::size_t refused_flip = 0;           ///< splits refused: a new triangle would reverse its normal
-  std::size_t ambiguous = 0;              ///< vertices within the tolerance of several border edges
+  std::size_t ambiguous = 0;              ///< vertices near several border edges, or within twice the tolerance of an end point
   std::size_t border_edges_before = 0;    ///< border edges before
   std::size_t border_edges_after = 0;     ///< border edges after
 };
@@ -82,7 +82,10 @@ CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Po
 /// closed segment (`Octree::vertices_near_segment()`, decided by `Compare_squared_distance_3`)
 /// that are farther than the tolerance from `a` and from `b` are candidates; so is a vertex
 /// within the tolerance of an end point it shares a triangle with (a weld can never merge those
-/// two, so the vertex is not claimed twice). A candidate `c` is
+/// two, so the vertex is not claimed twice). A vertex between one and two tolerances of an end
+/// point it does not share a triangle with may be an unwelded copy of that end point (a split
+/// there would make a sliver): it is accepted only if its border edge along `[a,b]` ends at that
+/// very end point, and is otherwise counted as ambiguous. A candidate `c` is
 /// accepted if one of its border edges `[c,d]` belongs to another triangle and runs along `[a,b]`
 /// (`d` is within the tolerance of `[a,b]`, or `a` or `b` is within the tolerance of `[c,d]`: the
 /// two borders may be sampled independently), and that triangle does not overlap
@@ -157,6 +160,8 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     return compare_sq(point(v), segment(point(a), point(b)), eps2) != CGAL::LARGER;
   };
   auto near_vertex = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), eps2) != CGAL::LARGER; };
+  const FT four_eps2 = 4 * eps2;
+  auto near_vertex2 = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), four_eps2) != CGAL::LARGER; };
   auto share_triangle = [&](size_type u, size_type v) {
     for(size_type t : tables.triangles_around_vertex(u)) if(tables.local_index(t, v) >= 0) return true;
     return false;
@@ -176,10 +181,17 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     for(std::size_t f : found) {
       const size_type c = border_vertices[f];
       if(c == a || c == b || c == apex) continue;
-      // Near an end point: that is a weld, not a T-junction, unless the two vertices share a
-      // triangle (the weld can never merge them; the minimum feature separation is not met).
+      // Within the tolerance of an end point: that is a weld, not a T-junction, unless the two
+      // vertices share a triangle (no weld can merge them). Within twice the tolerance, the vertex
+      // may be an unwelded copy of the end point, and a split there would make a sliver: it is
+      // accepted only if its own border edge ends at that end point (below), else counted as
+      // ambiguous (the minimum feature separation is not met).
       if((near_vertex(c, a) && !share_triangle(c, a)) || (near_vertex(c, b) && !share_triangle(c, b))) continue;
-      // A border edge of c, in another triangle, running along [a,b].
+      const bool close_to_a = near_vertex2(c, a) && !share_triangle(c, a);
+      const bool close_to_b = near_vertex2(c, b) && !share_triangle(c, b);
+      // A border edge of c, in another triangle, running along [a,b]. Near an end point, only
+      // the border edge from c to that very end point counts: the split then mirrors the short
+      // edge the other side already has.
       bool along = false, overlap_only = false;
       for(size_type t2 : tables.triangles_around_vertex(c)) {
         if(t2 == e.triangle) continue;
@@ -190,6 +202,7 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
           // The two border edges run along each other: one end of either lies within the
           // tolerance of the other segment (vertex-segment tests only, never the infinite line).
           if(!(d == a || d == b || near_segment(d, a, b) || near_segment(a, c, d) || near_segment(b, c, d))) continue;
+          if((close_to_a && d != a) || (close_to_b && d != b)) continue;
           const size_type x = tables.vertex(t2, (j + 2) % 3); // apex of t2 across [c,d]
           const bool overlaps = orientation(point(a), point(b), point(apex), point(x)) == CGAL::COPLANAR &&
                                 !collinear(point(a), point(b), point(x)) &&
@@ -200,6 +213,7 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
       }
       if(along) claims.emplace_back(c, static_cast<std::uint32_t>(k));
       else if(overlap_only) ++report.refused_overlap;
+      else if(close_to_a || close_to_b) ++report.ambiguous;
     }
   }
 
