@@ -209,28 +209,8 @@ public:
   std::vector<size_type> non_manifold_vertices() const
   {
     std::vector<size_type> result;
-    std::vector<size_type> parent;
-    for(size_type v = 0; v < number_of_vertices(); ++v) {
-      const Id_range around = triangles_around_vertex(v);
-      if(around.size() < 2) continue;
-      parent.resize(around.size());
-      std::iota(parent.begin(), parent.end(), size_type(0));
-      auto find = [&](size_type x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
-      std::size_t groups = around.size();
-      for(std::size_t k = 0; k < around.size(); ++k) {
-        const size_type t = around[k];
-        const int iv = local_index(t, v);
-        for(int i : {iv, (iv + 2) % 3}) {     // the two edges of t incident to v
-          const size_type u = neighbor(t, i);
-          if(u >= non_manifold_edge) continue;
-          const size_type* pos = std::lower_bound(around.begin(), around.end(), u);
-          const size_type a = find(static_cast<size_type>(k));
-          const size_type b = find(static_cast<size_type>(pos - around.begin()));
-          if(a != b) { parent[a] = b; --groups; }
-        }
-      }
-      if(groups > 1) result.push_back(v);
-    }
+    for(size_type v = 0; v < number_of_vertices(); ++v)
+      if(degree(v) > 1 && fan_size(v) != degree(v)) result.push_back(v);
     return result;
   }
 
@@ -334,6 +314,43 @@ public:
   /// @}
 
 private:
+  // The number of triangles reached from the first triangle of v by crossing manifold edges
+  // incident to v, in both directions (the fan of that triangle). Equal to degree(v) exactly when
+  // the triangles of v form one fan.
+  std::size_t fan_size(size_type v) const
+  {
+    const Id_range around = triangles_around_vertex(v);
+    const size_type start = around[0];
+    const std::size_t limit = around.size();
+    // Walks from `start` across its edge `first_edge` (incident to v); returns the number of
+    // triangles met after `start`, and whether the walk came back to `start`.
+    auto walk = [&](int first_edge, bool& closed) {
+      std::size_t count = 0;
+      size_type t = start;
+      int e = first_edge;
+      closed = false;
+      while(count <= limit) {
+        const size_type u = neighbor(t, e);
+        if(u >= non_manifold_edge) return count;
+        if(u == start) { closed = true; return count; }
+        const size_type w = vertex(t, e) == v ? vertex(t, (e + 1) % 3) : vertex(t, e); // the other end
+        const int iv = local_index(u, v);
+        // the edge of u incident to v that is not {v, w}
+        const int crossed = edge_index(u, v, w);
+        e = (crossed == iv) ? (iv + 2) % 3 : iv;
+        t = u;
+        ++count;
+      }
+      return count;
+    };
+    const int iv = local_index(start, v);
+    bool closed = false;
+    const std::size_t forward = walk(iv, closed);
+    if(closed) return forward + 1;
+    const std::size_t backward = walk((iv + 2) % 3, closed);
+    return forward + backward + 1;
+  }
+
   void check_vertex(size_type v) const
   {
     if(v >= number_of_vertices())

@@ -178,10 +178,8 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
   const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(kernel);
 
-  const std::vector<Point> input_points = points; // for the displacement measure
-  // Step 0: exact weld. `image[i]` follows input point i to its current index.
-  std::vector<std::size_t> image = internal::merge_duplicate_points_and_map(points, triangles);
-  report.exact_duplicates = report.input_points - points.size();
+  // Step 0: exact weld.
+  report.exact_duplicates = merge_duplicate_points(points, triangles);
   report.collapsed_triangles = remove_collapsed_triangles(triangles);
 
   // Step 1: the tables.
@@ -224,14 +222,15 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
   std::sort(sites.begin(), sites.end());
   report.ambiguous_sites = static_cast<std::size_t>(std::unique(sites.begin(), sites.end()) - sites.begin());
 
-  // Follow every input point to its final point and measure how far it moved.
+  // How far the points moved: every input point follows its exact-weld image (same coordinates)
+  // and then the chain of welds; only the points of the soup that were welded can move.
   typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
-  for(std::size_t i = 0; i < image.size(); ++i) {
-    std::size_t v = image[i];
-    while(merged_into[v] != v) v = merged_into[v];
-    image[i] = v;
+  for(std::size_t v = 0; v < merged_into.size(); ++v) {
+    if(merged_into[v] == v) continue;
+    std::size_t w = merged_into[v];
+    while(merged_into[w] != w) w = merged_into[w];
     report.max_displacement =
-      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(input_points[i], points[v]))));
+      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(points[v], points[w]))));
   }
 
   // Final counts, from the live tables (removing unused points below changes none of them).
