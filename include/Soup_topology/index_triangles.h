@@ -59,26 +59,41 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
   using Point = typename PointRange::value_type;
   using Face = typename FaceRange::value_type;
   Index_report report;
-  std::vector<Point> corners;
   std::size_t t = 0;
   for(const auto& tr : triangles) {
     if(internal::face_size(tr) != 3)
       throw Invalid_input("triangle " + std::to_string(t) + " has " + std::to_string(internal::face_size(tr)) +
                           " corners; expected 3");
-    for(const auto& p : tr) corners.push_back(p);
     ++t;
   }
   report.input_triangles = t;
-  report.input_corners = corners.size();
-  if(corners.size() >= std::size_t(0xFFFFFFF0u))
-    throw Invalid_input("too many corners (" + std::to_string(corners.size()) + ") for 32-bit indices");
-  const std::vector<std::uint32_t> first_of =
-    internal::first_equal_points(corners.size(), [&](std::size_t i) -> const Point& { return corners[i]; });
+  report.input_corners = 3 * t;
+  if(report.input_corners >= std::size_t(0xFFFFFFF0u))
+    throw Invalid_input("too many corners (" + std::to_string(report.input_corners) + ") for 32-bit indices");
+  // The corners are read in place when the range is random access, copied once otherwise.
+  using Triangle_iterator = decltype(std::begin(triangles));
+  constexpr bool random_access = std::is_base_of<std::random_access_iterator_tag,
+    typename std::iterator_traits<Triangle_iterator>::iterator_category>::value;
+  std::vector<Point> copied;
+  if constexpr(!random_access) {
+    copied.reserve(report.input_corners);
+    for(const auto& tr : triangles) for(const auto& p : tr) copied.push_back(p);
+  }
+  auto corner_point = [&](std::size_t i) -> const Point& {
+    if constexpr(random_access) {
+      const auto& tr = *(std::begin(triangles) + static_cast<std::ptrdiff_t>(i / 3));
+      return *(std::begin(tr) + static_cast<std::ptrdiff_t>(i % 3));
+    } else {
+      return copied[i];
+    }
+  };
+  const std::size_t corners = report.input_corners;
+  const std::vector<std::uint32_t> first_of = internal::first_equal_points(corners, corner_point);
   // Number the distinct points in order of first appearance.
-  std::vector<std::uint32_t> index_of(corners.size());
+  std::vector<std::uint32_t> index_of(corners);
   points.clear();
-  for(std::size_t i = 0; i < corners.size(); ++i) {
-    if(first_of[i] == i) { index_of[i] = static_cast<std::uint32_t>(points.size()); points.push_back(corners[i]); }
+  for(std::size_t i = 0; i < corners; ++i) {
+    if(first_of[i] == i) { index_of[i] = static_cast<std::uint32_t>(points.size()); points.push_back(corner_point(i)); }
     else index_of[i] = index_of[first_of[i]];
   }
   faces.clear();
