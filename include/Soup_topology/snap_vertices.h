@@ -149,33 +149,24 @@ template <class PointRange, class TriangleRange, class NamedParameters = CGAL::p
 Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  using CGAL::parameters::get_parameter_reference;
-  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
-  using Point = typename boost::property_traits<Point_map>::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
-  using FT = typename Kernel::FT;
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Point_map = typename NP_helper::Point_map;
+  using Point = typename NP_helper::Point;
+  using Kernel = typename NP_helper::Geom_traits;
+  using FT = typename NP_helper::FT;
   using size_type = Adjacency_tables::size_type;
 
-  const Point_map pm = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
-  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const Point_map pm = NP_helper::get_point_map(np);
+  const Kernel kernel = NP_helper::get_geom_traits(np);
   // The visitor: a reference when given as `std::ref(v)`, otherwise a copy.
   Default_snap_visitor default_visitor;
-  auto&& visitor_given = choose_parameter(get_parameter_reference(np, CGAL::internal_np::visitor), default_visitor);
+  auto&& visitor_given = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter_reference(np, CGAL::internal_np::visitor), default_visitor);
   using Visitor_given = decltype(visitor_given);
   std::conditional_t<std::is_const<std::remove_reference_t<Visitor_given>>::value, std::decay_t<Visitor_given>,
                      Visitor_given>
     visitor = visitor_given;
-
-  if(tables.number_of_vertices() != points.size() || tables.number_of_triangles() != triangles.size())
-    throw Invalid_input("snap_vertices: the adjacency tables do not match the soup (" +
-                        std::to_string(tables.number_of_vertices()) + " vertices and " +
-                        std::to_string(tables.number_of_triangles()) + " triangles in the tables, " +
-                        std::to_string(points.size()) + " points and " + std::to_string(triangles.size()) +
-                        " triangles in the soup)");
-  internal::check_finite_points(points, pm);
-  const FT eps = internal::resolve_tolerance<FT>(points, pm, np);
+  const FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np);
 
   auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();

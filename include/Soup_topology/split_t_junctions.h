@@ -112,20 +112,16 @@ template <class PointRange, class TriangleRange, class NamedParameters = CGAL::p
 Split_report split_t_junctions(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
                                const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
-  using Point = typename boost::property_traits<Point_map>::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
-  using FT = typename Kernel::FT;
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Point_map = typename NP_helper::Point_map;
+  using Point = typename NP_helper::Point;
+  using Kernel = typename NP_helper::Geom_traits;
+  using FT = typename NP_helper::FT;
   using size_type = Adjacency_tables::size_type;
 
-  const Point_map pm = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
-  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
-  if(tables.number_of_vertices() != points.size() || tables.number_of_triangles() != triangles.size())
-    throw Invalid_input("split_t_junctions: the adjacency tables do not match the soup");
-  internal::check_finite_points(points, pm);
-  const FT eps = internal::resolve_tolerance<FT>(points, pm, np);
+  const Point_map pm = NP_helper::get_point_map(np);
+  const Kernel kernel = NP_helper::get_geom_traits(np);
+  const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   const FT eps2 = eps * eps;
 
   auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };

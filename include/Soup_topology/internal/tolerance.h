@@ -1,8 +1,9 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Reading the tolerance from the named parameters: absolute (`snapping_tolerance`) or relative
-// to the bounding-box diagonal (`relative_tolerance`), validated once for every algorithm.
+// The named parameters every algorithm on a soup reads, deduced in one place: the point map, the
+// geometric traits, and the tolerance, absolute (`snapping_tolerance`) or relative to the
+// bounding-box diagonal (`relative_tolerance`), validated once for every algorithm.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_TOLERANCE_H
 #define SOUP_TOPOLOGY_INTERNAL_TOLERANCE_H
@@ -10,7 +11,12 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/parameters.h>
 
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
@@ -86,6 +92,43 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
     return FT(0);
   }
 }
+
+/// the types and values that the named parameters `np` give an algorithm on the soup `points`.
+template <class PointRange, class NamedParameters>
+struct Soup_np_helper
+{
+  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
+  using Point = typename boost::property_traits<Point_map>::value_type;
+  using Default_geom_traits = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Geom_traits = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t,
+                                                                         NamedParameters, Default_geom_traits>::type;
+  using FT = typename Geom_traits::FT;
+
+  static Point_map get_point_map(const NamedParameters& np)
+  {
+    return CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
+  }
+  static Geom_traits get_geom_traits(const NamedParameters& np)
+  {
+    return CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  }
+  /// checks the points (finite) and the tables (they describe `triangles` over `points`), then
+  /// returns the tolerance; throws `Invalid_input` naming `function` otherwise.
+  template <class TriangleRange>
+  static FT checked_tolerance(const char* function, const PointRange& points, const TriangleRange& triangles,
+                              const Adjacency_tables& tables, const NamedParameters& np)
+  {
+    if(tables.number_of_vertices() != points.size() || tables.number_of_triangles() != triangles.size())
+      throw Invalid_input(std::string(function) + ": the adjacency tables do not match the soup (" +
+                          std::to_string(tables.number_of_vertices()) + " vertices and " +
+                          std::to_string(tables.number_of_triangles()) + " triangles in the tables, " +
+                          std::to_string(points.size()) + " points and " + std::to_string(triangles.size()) +
+                          " triangles in the soup)");
+    const Point_map pm = get_point_map(np);
+    check_finite_points(points, pm);
+    return resolve_tolerance<FT>(points, pm, np);
+  }
+};
 
 } // namespace internal
 } // namespace Soup_topology
