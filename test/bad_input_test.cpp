@@ -319,6 +319,46 @@ TEST(BadInputOFF, ReadsTheSharedFilesLikeCGAL)
   }
 }
 
+TEST(BadInputPLY, HeadersThatCGALsReaderMishandles)
+{
+  // Found by fuzz/fuzz_ply: undefined behaviour or unbounded allocation in CGAL 5.5's reader,
+  // now refused by the header check of read_triangle_soup (internal/PLY_header.h).
+  const std::string format = "ply\nformat ascii 1.0\n";
+  const std::string data = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("p.ply", format + "property float x\nelement vertex 3\nend_header\n" + data),
+                  "p.ply:3: PLY 'property' before any 'element'");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("t.ply", format + "element vertex 3\nproperty float x\nproperty uchar y\n"
+                                                          "property float z\nend_header\n" + data),
+                  "t.ply:5: PLY vertex coordinate 'y' of type 'uchar' (expected float or double)");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("d.ply", format + "element vertex 3\nproperty float x\nproperty float x\n"
+                                                          "end_header\n" + data),
+                  "d.ply:5: PLY element 'vertex' has two properties named 'x'");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("n.ply", format + "element vertex 988888888888888\nend_header\n"),
+                  "n.ply:3: PLY element 'vertex' announces 988888888888888 items with no property");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("b.ply", format + "element vertex 4000000000\nproperty float x\n"
+                                                          "property float y\nproperty float z\nend_header\n" + data),
+                  "b.ply:3: PLY element 'vertex' announces 4000000000 items, more than the file of");
+  EXPECT_CONTAINS(read_error<ST::IO::Read_error>("l.ply", format + "element vertex 3\nproperty float x\nproperty float y\n"
+                                                          "property float z\nelement face 1\nproperty list int int vertex_indices\n"
+                                                          "end_header\n" + data),
+                  "l.ply:8: PLY list 'vertex_indices' with a count of type 'int' is not supported");
+}
+
+TEST(BadInputPLY, CommonFilesAreRead)
+{
+  const std::string folder = soup_test::temporary_folder("bad_input_ply");
+  const std::string path = write_file(folder, "ok.ply", "ply\nformat ascii 1.0\ncomment fine\nelement vertex 3\n"
+                                                        "property double x\nproperty double y\nproperty double z\n"
+                                                        "element face 1\nproperty list uchar int vertex_indices\n"
+                                                        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::IO::read_triangle_soup(path, points, triangles);
+  EXPECT_EQ(points.size(), 3u);
+  EXPECT_EQ(triangles.size(), 1u);
+  fs::remove_all(folder);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The library: reconstruct_topology
 

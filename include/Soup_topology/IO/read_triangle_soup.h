@@ -12,6 +12,7 @@
 #include <Soup_topology/IO/VRML.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/index_triangles.h>
+#include <Soup_topology/internal/PLY_header.h>
 #include <Soup_topology/internal/soup_checks.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
@@ -95,6 +96,7 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
       // Our reader: it checks the header against the data before allocating (see IO/OFF.h).
       read_OFF_polygons(read_file_contents(filename), pts, polygons, filename);
     } else {
+      if(report.format == "ply") Soup_topology::internal::check_PLY_header(filename); // see internal/PLY_header.h
       bool ok = false;
       try {
         ok = CGAL::IO::read_polygon_soup(filename, pts, polygons, CGAL::parameters::verbose(false));
