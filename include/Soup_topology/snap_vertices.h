@@ -95,6 +95,48 @@ bool moves_keep_triangle(const Point& a, const Point& b, const Point& c,
   return true;
 }
 
+/// `true` if no moves of the corners of triangle (a, b, c) by at most `delta` each can make it
+/// degenerate or reverse its normal: with n = (b - a) x (c - a), the moves change n by at most
+/// 2 delta (|b - a| + |c - a|) + 4 delta^2, and a change smaller than |n| keeps n' . n > 0. Evaluated
+/// in double with a 1% margin, for `double` coordinates only (otherwise `false`: ask the exact test).
+template <class Point>
+bool fat_enough_for_moves(const Point& a, const Point& b, const Point& c, double delta)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double u[3] = {b.x() - a.x(), b.y() - a.y(), b.z() - a.z()};
+    const double v[3] = {c.x() - a.x(), c.y() - a.y(), c.z() - a.z()};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double norm_n = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double change = 2 * delta * (lu + lv) + 4 * delta * delta;
+    return std::isfinite(norm_n) && norm_n > 1.01 * change + 1e-280;
+  } else {
+    (void)a; (void)b; (void)c; (void)delta;
+    return false;
+  }
+}
+
+/// compares the distances from `p` to `q` and to `r`: in double when they are far from equal
+/// (double coordinates only: the squared distances are then within a few ulps of the exact
+/// ones), else with the kernel's exact `Compare_distance_3`.
+template <class Point, class CompareDistance>
+CGAL::Comparison_result compare_distances(const Point& p, const Point& q, const Point& r,
+                                          const CompareDistance& compare_distance)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double dq = (q.x() - p.x()) * (q.x() - p.x()) + (q.y() - p.y()) * (q.y() - p.y()) + (q.z() - p.z()) * (q.z() - p.z());
+    const double dr = (r.x() - p.x()) * (r.x() - p.x()) + (r.y() - p.y()) * (r.y() - p.y()) + (r.z() - p.z()) * (r.z() - p.z());
+    if(dq > 1e-250 && dr > 1e-250) {
+      if(dq < dr * (1 - 1e-12)) return CGAL::SMALLER;
+      if(dq > dr * (1 + 1e-12)) return CGAL::LARGER;
+    }
+  }
+  return compare_distance(p, q, r);
+}
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyWelding
@@ -305,7 +347,8 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       const auto nb = neighbours(rep);
       for(auto it = nb.first; it != nb.second; ++it) if(!assigned[*it]) members.push_back(*it);
       std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
-        const CGAL::Comparison_result r = compare_distance(candidate_points[rep], candidate_points[a], candidate_points[b]);
+        const CGAL::Comparison_result r = internal::compare_distances(candidate_points[rep], candidate_points[a],
+                                                                      candidate_points[b], compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
         return less_xyz(candidate_points[a], candidate_points[b]);
       });
@@ -363,6 +406,8 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
       if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) continue;
       Refusal_reason why = Refusal_reason::FLIP;
+      if(internal::fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report.tolerance))
+        continue;
       if(internal::moves_keep_triangle<Kernel>(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), why))
         continue;
       for(size_type v : tr)
