@@ -59,16 +59,18 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
   constexpr bool has_absolute = !is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value;
   constexpr bool has_relative = !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value;
   static_assert(!(has_absolute && has_relative), "give either snapping_tolerance or relative_tolerance, not both");
-  // The predicates compare squared distances with the squared tolerance: it must not overflow
-  // (an infinite bound reaches GMP's exact conversion, which raises SIGFPE on infinity).
+  // The predicates compare squared distances with the squared tolerance and with the square of
+  // twice the tolerance (split_t_junctions): neither may overflow (an infinite bound reaches
+  // GMP's exact conversion, which raises SIGFPE on infinity). The largest accepted is ~6.7e153.
   const auto text = [](double x) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", x);
     return std::string(buffer);
   };
   const auto check_square = [&](double e, const char* what) {
-    if(!std::isfinite(e * e))
-      throw Invalid_input(std::string(what) + " is too large (" + text(e) + "): its square overflows a double");
+    if(!std::isfinite(4 * e * e))
+      throw Invalid_input(std::string(what) + " is too large (" + text(e) +
+                          "): the square of twice its value overflows a double");
   };
   if constexpr(has_absolute) {
     const FT eps = FT(get_parameter(np, CGAL::internal_np::snapping_tolerance));
