@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, builds everything in Release and runs the whole test suite
 # (unit tests, examples, the command-line tool), then checks that an installed copy of the
-# package is found by a consumer project through find_package(Soup_topology).
+# package is found by a consumer project through find_package(Soup_topology); then the tests under
+# AddressSanitizer + UndefinedBehaviorSanitizer and short fuzz runs (SOUP_TOPOLOGY_HARDENING=0 skips
+# those two).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -16,3 +18,8 @@ cmake --install "$build" --prefix "$prefix" > /dev/null
 cmake -S test/install_consumer -B "$build/consumer" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" > /dev/null
 cmake --build "$build/consumer" -j "$jobs" > /dev/null
 "$build/consumer/consumer"
+# Hardening: the tests under the sanitizers, then the fuzz targets for FUZZ_SECONDS each.
+if [ "${SOUP_TOPOLOGY_HARDENING:-1}" != 0 ]; then
+  bash scripts/run_sanitizers.sh
+  bash scripts/run_fuzz.sh
+fi

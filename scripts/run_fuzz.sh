@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of fuzz/ (clang, AddressSanitizer + UndefinedBehaviorSanitizer) and
+# runs each for FUZZ_SECONDS from its seeds: the small files of fuzz/corpus/<target>/ and the
+# files of the shared data folder of the same format, taken at run time. A crash, a leak, a
+# timeout, an allocation beyond the limits or a broken invariant fails the script; the input
+# that caused it is left in $build/artifacts/. README.md ("Hardening") describes a long run.
+#   FUZZ_SECONDS     seconds per target (default 30)
+#   FUZZ_TARGETS     targets to run (default: all, "stl_binary stl_ascii off obj ply vrml pipeline")
+#   FUZZ_BUILD_DIR   build folder (default build-fuzz)
+#   SOUP_TOPOLOGY_DATA_DIR  the shared data folder (default ../shared/data)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+# clang and libFuzzer from Debian.
+missing=()
+for p in clang libclang-rt-14-dev libfuzzer-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+build=${FUZZ_BUILD_DIR:-build-fuzz}
+seconds=${FUZZ_SECONDS:-30}
+targets=${FUZZ_TARGETS:-"stl_binary stl_ascii off obj ply vrml pipeline"}
+jobs=${JOBS:-$(nproc)}
+data=${SOUP_TOPOLOGY_DATA_DIR:-../shared/data}
+
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+      -DSOUP_TOPOLOGY_BUILD_TESTS=OFF -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF \
+      -DSOUP_TOPOLOGY_BUILD_FUZZERS=ON > /dev/null
+cmake --build "$build" -j "$jobs" # only the fuzz targets are configured
+
+# Seeds: ours, then the shared files of the target's format up to 64 KB (read in place, not copied
+# into the repository: some carry GPL or CC-BY-SA terms).
+seeds_from_data() {
+  local target=$1
+  [ -d "$data" ] || return 0
+  case $target in
+    stl_binary|stl_ascii) find "$data" -name '*.stl' -size -64k ;;
+    off) find "$data" -name '*.off' -size -64k ;;
+    obj) find "$data" -name '*.obj' -size -64k ;;
+    ply) find "$data" -name '*.ply' -size -64k ;;
+    vrml) find "$data" -name '*.wrl' -size -64k ;;
+  esac
+}
+
+status=0
+mkdir -p "$build/artifacts"
+for t in $targets; do
+  seeds="$build/seeds/$t"
+  corpus="$build/corpus/$t"
+  rm -rf "$seeds"
+  mkdir -p "$seeds" "$corpus"
+  cp fuzz/corpus/"$t"/* "$seeds"/
+  for f in $(seeds_from_data "$t"); do cp "$f" "$seeds/data_$(basename "$f")"; done
+  case $t in pipeline) max_len=512 ;; *) max_len=65536 ;; esac
+  log="$build/fuzz_$t.log"
+  echo "fuzz_$t: ${seconds} s, seeds: $(ls "$seeds" | wc -l) files"
+  if ! "$build/fuzz/fuzz_$t" "$corpus" "$seeds" -max_total_time="$seconds" -max_len="$max_len" \
+       -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
+       -artifact_prefix="$build/artifacts/$t-" > "$log" 2>&1; then
+    echo "fuzz_$t FAILED, see $log:"
+    grep -E "ERROR|invariant violated|SUMMARY|Test unit written" "$log" | head -20 || true
+    status=1
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" | sed "s/^/  /" || true
+done
+exit $status
