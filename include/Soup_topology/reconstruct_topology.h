@@ -49,6 +49,7 @@ struct Reconstruction_report
   std::size_t refused_same_triangle = 0;    ///< welds refused: the vertices share a triangle
   std::size_t refused_degenerate = 0;       ///< welds refused: a triangle would degenerate
   std::size_t refused_flip = 0;             ///< welds refused: a triangle would flip
+  std::size_t refused_holds_welds = 0;      ///< welds refused: the vertex received welds in an earlier round
   std::size_t ambiguous_sites = 0;          ///< sites where the minimum feature separation is not met
   std::size_t short_edges = 0;              ///< edges shorter than the tolerance (first round)
   // T-junctions, summed over the rounds.
@@ -74,7 +75,8 @@ struct Reconstruction_report
   std::size_t duplicated_points = 0;        ///< points duplicated to separate non-manifold vertices and edges
 
   /// the total number of refused welds.
-  std::size_t refused_welds() const { return refused_same_triangle + refused_degenerate + refused_flip; }
+  std::size_t refused_welds() const
+  { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds; }
   /// `true` if the result has no border edge.
   bool closed() const { return border_edges_after == 0; }
 };
@@ -198,14 +200,24 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
     void on_refusal(std::size_t, std::size_t, Refusal_reason) {}
   } recorder{&merged_into};
   std::vector<std::size_t> sites;
+  // A vertex that received welds is never moved in a later round (its welded points would move
+  // farther than the tolerance); it may still receive more.
+  std::vector<char> holds_welds(points.size(), 0);
   for(std::size_t round = 0; round < max_rounds; ++round) {
     ++report.rounds;
-    const Snap_report s = snap_vertices(points, triangles, tables, weld_np.visitor(std::ref(recorder)));
+    const Snap_report s = snap_vertices(
+      points, triangles, tables,
+      CGAL::Named_function_parameters<const std::vector<char>*, internal_np::fixed_vertices_t,
+                                      std::decay_t<decltype(weld_np.visitor(std::ref(recorder)))>>(
+        &holds_welds, weld_np.visitor(std::ref(recorder))));
+    for(std::size_t v = 0; v < merged_into.size(); ++v)
+      if(merged_into[v] != v) holds_welds[merged_into[v]] = 1;
     report.snapped_vertices += s.merged_vertices;
     report.clusters += s.clusters;
     report.refused_same_triangle += s.refused_same_triangle;
     report.refused_degenerate += s.refused_degenerate;
     report.refused_flip += s.refused_flip;
+    report.refused_holds_welds += s.refused_holds_welds;
     if(round == 0) report.short_edges = s.short_edges;
     sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
     std::size_t splits = 0;

@@ -38,7 +38,8 @@ enum class Refusal_reason
 {
   SAME_TRIANGLE,  ///< the two vertices belong to one triangle (merging would collapse it)
   DEGENERATE,     ///< a triangle around the moved vertex would become degenerate (collinear)
-  FLIP            ///< a triangle around the moved vertex would reverse its normal
+  FLIP,           ///< a triangle around the moved vertex would reverse its normal
+  HOLDS_WELDS     ///< the vertex received welds earlier: moving it would carry them farther than the tolerance
 };
 
 /// \ingroup PkgSoupTopologyWelding
@@ -63,6 +64,7 @@ struct Snap_report
   std::size_t refused_same_triangle = 0;      ///< refusals: the two vertices share a triangle
   std::size_t refused_degenerate = 0;         ///< refusals: a triangle would become degenerate
   std::size_t refused_flip = 0;               ///< refusals: a triangle would flip
+  std::size_t refused_holds_welds = 0;        ///< refusals: the vertex holds earlier welds (see `Refusal_reason`)
   /// ambiguous sites: groups of vertices connected by the tolerance graph that could not all be
   /// merged into one representative (a chain longer than the tolerance, or vertices of one
   /// triangle closer than the tolerance). Each site is listed by its smallest vertex index.
@@ -74,8 +76,13 @@ struct Snap_report
   std::size_t border_edges_after = 0;         ///< border edges after the weld
   double max_displacement = 0;                ///< largest distance a merged vertex moved
   /// total number of refusals.
-  std::size_t refused() const { return refused_same_triangle + refused_degenerate + refused_flip; }
+  std::size_t refused() const { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds; }
 };
+
+namespace internal_np {
+/// internal: a `const std::vector<char>*`, nonzero for the vertices `snap_vertices()` may not move
+enum fixed_vertices_t { fixed_vertices };
+} // namespace internal_np
 
 namespace internal {
 
@@ -209,6 +216,11 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
                      Visitor_given>
     visitor = visitor_given;
   const FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np);
+  // Vertices that may receive welds but not move (`reconstruct_topology()` fixes the
+  // representatives of earlier rounds, so that no point moves farther than the tolerance in all).
+  const std::vector<char>* fixed = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, internal_np::fixed_vertices), static_cast<const std::vector<char>*>(nullptr));
+  if(fixed != nullptr && fixed->size() != points.size()) fixed = nullptr;
 
   auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
@@ -359,6 +371,13 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
       for(size_type t : tables.triangles_around_vertex(rep_v)) in_cluster_mark[t] = cluster_id;
       for(std::uint32_t m : members) {
         const size_type mv = candidates[m];
+        if(fixed != nullptr && (*fixed)[mv]) {
+          // mv received welds in an earlier call: it may be a representative, never move.
+          ++report.refused_holds_welds;
+          visitor.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
+          ambiguous_component[k] = true;
+          continue;
+        }
         bool conflict = false;
         for(size_type t : tables.triangles_around_vertex(mv)) if(in_cluster_mark[t] == cluster_id) { conflict = true; break; }
         if(conflict) {
