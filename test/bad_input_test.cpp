@@ -617,11 +617,12 @@ TEST_F(BadInputCli, UnwritableOutput)
   EXPECT_EQ(r.code, 2);
   EXPECT_CONTAINS(r.output, output + "/out.off: the output folder does not exist");
   EXPECT_EQ(read_whole(output), "previous content\n");
-  // A report that cannot be written.
+  // A report that cannot be written: refused before anything is written.
   r = run_cli("repair '" + input + "' -o '" + folder + "/new.off' --report '" + output + "/r.json'");
   EXPECT_EQ(r.code, 2);
-  EXPECT_CONTAINS(r.output, output + "/r.json: the output folder does not exist");
+  EXPECT_CONTAINS(r.output, "the folder of the report file does not exist");
   EXPECT_EQ(read_whole(output), "previous content\n");
+  EXPECT_FALSE(std::filesystem::exists(folder + "/new.off"));
 }
 
 TEST_F(BadInputCli, OutputIsTheInput)

@@ -251,6 +251,11 @@ int run_repair(const std::vector<std::string>& args)
   const std::string out_format = ST::IO::file_extension(out);
   if(out_format != "off" && out_format != "obj" && out_format != "ply" && out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + out_format + "' (expected .off, .obj, .ply or .stl)");
+  if(!report_file.empty()) {
+    const std::filesystem::path rp(report_file);
+    if(rp.has_parent_path() && !std::filesystem::is_directory(rp.parent_path()))
+      throw Usage_error("repair: the folder of the report file does not exist ('" + report_file + "')");
+  }
   {
     std::error_code ec;
     if(std::filesystem::exists(out) && std::filesystem::equivalent(in, out, ec))
