@@ -242,8 +242,6 @@ public:
     const Query_point qa = approximate(q);
     const double bound = radius_bound(r2, qa.err);
     const double bound2 = bound * bound;
-    typename Geom_traits::Compare_squared_distance_3 compare_sq =
-      gt_.compare_squared_distance_3_object();
 
     std::vector<std::size_t> found;
     Stack stack;
@@ -257,10 +255,7 @@ public:
         continue;
       if(nd.first_child == 0)
       {
-        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-          if(point_squared_distance(k, qa.c) <= bound2 &&
-             compare_sq(q, points_[k], r2) != CGAL::LARGER)
-            found.push_back(ids_[k]);
+        scan_leaf(nd, q, qa.c, r2, bound2, found);
         continue;
       }
       for(int i = 7; i >= 0; --i)
@@ -283,8 +278,6 @@ public:
     if(empty())
       return;
     const FT r2 = radius * radius;
-    typename Geom_traits::Compare_squared_distance_3 compare_sq =
-      gt_.compare_squared_distance_3_object();
     std::vector<std::size_t> near;
     Stack stack;
     stack.push_back(Frame{0, {{0, 0, 0}}});
@@ -315,21 +308,7 @@ public:
         }
         if(inside)
         {
-          const double bound2 = bound * bound;
-          // With double coordinates the squared distance computed in double is within a few
-          // ulps of the exact one: far from r2 it decides alone, near it the kernel decides.
-          const double r2d = CGAL::to_double(r2);
-          const bool filter = double_coordinates && r2d > 1e-250 && r2d < 1e250;
-          for(std::uint32_t j = nd.begin; j != nd.end; ++j)
-          {
-            const double d2 = point_squared_distance(j, qa.c);
-            if(d2 > bound2)
-              continue;
-            if(filter && d2 < r2d * (1 - 1e-12) && (d2 == 0 || d2 > 1e-250))
-              near.push_back(ids_[j]);
-            else if(!(filter && d2 > r2d * (1 + 1e-12)) && compare_sq(points_[k], points_[j], r2) != CGAL::LARGER)
-              near.push_back(ids_[j]);
-          }
+          scan_leaf(nd, points_[k], qa.c, r2, bound * bound, near);
           std::sort(near.begin(), near.end());
         }
         else
@@ -759,6 +738,28 @@ private:
     if(!std::isfinite(r.c[0]) || !std::isfinite(r.c[1]) || !std::isfinite(r.c[2]))
       r.err = std::numeric_limits<double>::infinity();
     return r;
+  }
+
+  // appends to `found` the index of every point of leaf `nd` within sqrt(r2) of `q` (`qc` its
+  // coordinates in double, `bound2` the widened squared radius of the pruning). With double
+  // coordinates the squared distance computed in double is within a few ulps of the exact one:
+  // far from r2 it decides alone, near it the kernel decides.
+  void scan_leaf(const Node& nd, const Point_3& q, const std::array<double, 3>& qc, const FT& r2, double bound2,
+                 std::vector<std::size_t>& found) const
+  {
+    typename Geom_traits::Compare_squared_distance_3 compare_sq = gt_.compare_squared_distance_3_object();
+    const double r2d = CGAL::to_double(r2);
+    const bool filter = double_coordinates && r2d > 1e-250 && r2d < 1e250;
+    for(std::uint32_t j = nd.begin; j != nd.end; ++j)
+    {
+      const double d2 = point_squared_distance(j, qc);
+      if(d2 > bound2)
+        continue;
+      if(filter && d2 < r2d * (1 - 1e-12) && (d2 == 0 || d2 > 1e-250))
+        found.push_back(ids_[j]);
+      else if(!(filter && d2 > r2d * (1 + 1e-12)) && compare_sq(q, points_[j], r2) != CGAL::LARGER)
+        found.push_back(ids_[j]);
+    }
   }
 
   // an upper bound on the radius, widened by every error of the double computations
