@@ -11,6 +11,7 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/triangle_soup_to_face_graph.h>
 #include <Soup_topology/soup_statistics.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
