@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-build=${BUILD_DIR:-build}
+# A folder of its own: the test script's build folder keeps its options whichever runs first.
+build=${DEMO_BUILD_DIR:-build-demo}
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_BUILD_TESTS=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF > /dev/null
 cmake --build "$build" --target soup_topology -j "$(nproc)"
 mkdir -p "$build/demo"

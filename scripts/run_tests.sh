@@ -9,9 +9,12 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 build=${BUILD_DIR:-build}
 jobs=${JOBS:-$(nproc)}
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release
+# Every option that decides what is built is given explicitly, so that a build folder configured
+# by another script (run_demo.sh builds only the tool) cannot leave the tests out.
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_BUILD_TESTS=ON \
+      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=ON
 cmake --build "$build" -j "$jobs"
-ctest --test-dir "$build" --output-on-failure -j "$jobs"
+ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
 # The installed package works for a user project.
 prefix="$PWD/$build/install-prefix"
 cmake --install "$build" --prefix "$prefix" > /dev/null
