@@ -10,7 +10,9 @@
 #define SOUP_TOPOLOGY_INTERNAL_VRML_PARSER_H
 
 #include <Soup_topology/IO/VRML.h>
+#include <Soup_topology/internal/triangulate_polygon.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -124,6 +126,9 @@ struct Node
   Node_kind kind = Node_kind::SKIPPED;
   std::string_view type;            // the node's type name as written
   std::size_t line = 0;             // where the node starts
+  // whether an instance adds anything to the output (a shape, or a count of geometry outside a
+  // shape): the instantiation skips the others, which can be DAGs of astronomical size
+  bool contributes = false;
   // GROUP
   Affine local;
   std::vector<std::size_t> children;
@@ -134,6 +139,8 @@ struct Node
   std::vector<std::int32_t> coord_index;
   std::vector<std::pair<std::size_t, std::size_t>> index_lines; // (first position, line) at each line change
   bool ccw = true;
+  std::size_t triangle_count = 0;         // triangles an instance gives (k - 2 per polygon of k >= 3)
+  std::vector<std::uint32_t> used_points; // the points of coord that coordIndex names, in increasing order
   // COORDINATE
   std::vector<double> xyz;
 
@@ -174,7 +181,11 @@ public:
          const Soup_topology::IO::VRML_read_options& options,
          Soup_topology::IO::VRML_read_result& result, Soup& soup)
     : p_(begin), end_(end), name_(name), options_(options), result_(result), soup_(soup)
-  {}
+  {
+    const std::size_t bytes = static_cast<std::size_t>(end - begin);
+    budget_ = options.instance_budget != 0 ? options.instance_budget
+                                           : Soup_topology::IO::VRML_read_options::default_instance_budget(bytes);
+  }
 
   void run()
   {
@@ -196,7 +207,7 @@ public:
         roots.push_back(id);
     }
     for(std::size_t id : roots)
-      emit(id, Affine());
+      instantiate(id);
     result_.number_of_points = soup_.xyz.size() / 3;
     result_.number_of_triangles = soup_.triangles.size();
   }
@@ -206,7 +217,27 @@ private:
 
   [[noreturn]] void fail(const std::string& description, std::size_t line) const
   {
-    throw Read_error(name_ + ":" + std::to_string(line) + ": " + description);
+    throw Read_error(name_ + ":" + std::to_string(line) + ": " + printable(description));
+  }
+
+  // the bytes of the file quoted in a message, with control and non-ASCII bytes as \xNN
+  static std::string printable(const std::string& text)
+  {
+    static const char* const hex = "0123456789abcdef";
+    std::string r;
+    for(const char ch : text)
+    {
+      const unsigned char c = static_cast<unsigned char>(ch);
+      if(c < 0x20 || c >= 0x7F)
+      {
+        r += "\\x";
+        r += hex[c >> 4];
+        r += hex[c & 15];
+      }
+      else
+        r += ch;
+    }
+    return r;
   }
 
   [[noreturn]] void fail_eof(const char* what, std::size_t open_line) const
@@ -233,6 +264,10 @@ private:
 
   void read_header()
   {
+    if(end_ - p_ >= 2 && static_cast<unsigned char>(p_[0]) == 0x1F && static_cast<unsigned char>(p_[1]) == 0x8B)
+      fail("the file is gzip-compressed (a .wrl or .wrz file often is): decompress it first, e.g. "
+           "'gunzip -c file.wrl > plain.wrl', and read the result",
+           1);
     if(end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) // UTF-8 byte order mark
       p_ += 3;
     if(end_ - p_ >= 5 && std::memcmp(p_, "#VRML", 5) == 0)
@@ -255,8 +290,10 @@ private:
         ++line_;
         ++p_;
       }
-      else if(static_cast<unsigned char>(c) <= ' ' || c == ',')
+      else if(c == ' ' || c == '\t' || c == '\r' || c == ',')
         ++p_;
+      else if(static_cast<unsigned char>(c) < ' ' || c == '\x7F')
+        fail_control_byte(c);
       else if(c == '#')
       {
         while(p_ != end_ && *p_ != '\n')
@@ -265,6 +302,13 @@ private:
       else
         return;
     }
+  }
+
+  [[noreturn]] void fail_control_byte(char c) const
+  {
+    fail("control byte " + printable(std::string(1, c))
+           + " outside comments and strings: not VRML text (a binary or damaged file?)",
+         line_);
   }
 
   // next non-space character, 0 at the end
@@ -376,6 +420,8 @@ private:
       ++b;
     double v = 0;
     const auto r = std::from_chars(b, end_, v);
+    if(r.ec == std::errc::result_out_of_range && (r.ptr == end_ || is_delimiter(*r.ptr)))
+      fail(std::string("number out of the range of a double (") + what + "): " + quote_here(), line_);
     if(r.ec != std::errc() || (r.ptr != end_ && !is_delimiter(*r.ptr)) || !std::isfinite(v))
       fail(std::string("cannot read a number (") + what + ") from " + quote_here(), line_);
     p_ = r.ptr;
@@ -764,6 +810,8 @@ private:
                        * sr * Affine::scaling(scale) * sr_inverse
                        * Affine::translation(minus_center);
     }
+    for(std::size_t child : nodes_[id].children)
+      nodes_[id].contributes = nodes_[id].contributes || nodes_[child].contributes;
     return id;
   }
 
@@ -785,6 +833,8 @@ private:
       }
       return false;
     });
+    const std::size_t g = nodes_[id].geometry;
+    nodes_[id].contributes = (g != npos && nodes_[g].kind == Node_kind::INDEXED_FACE_SET);
     return id;
   }
 
@@ -823,6 +873,30 @@ private:
                + std::to_string(n) + " points",
              node.line_of_index(i));
     }
+    // what an instance gives: the triangles, and the points named (an instance appends only
+    // those, so that many small shapes sharing one large Coordinate stay small)
+    std::size_t corners = 0;
+    for(std::size_t i = 0; i <= node.coord_index.size(); ++i)
+    {
+      if(i == node.coord_index.size() || node.coord_index[i] == -1)
+      {
+        if(corners >= 3)
+          node.triangle_count += corners - 2;
+        corners = 0;
+        continue;
+      }
+      ++corners;
+      const std::size_t v = static_cast<std::size_t>(node.coord_index[i]);
+      if(mark_.size() <= v)
+        mark_.resize(v + 1, 0);
+      if(mark_[v] != id + 1)
+      {
+        mark_[v] = id + 1;
+        node.used_points.push_back(static_cast<std::uint32_t>(v));
+      }
+    }
+    std::sort(node.used_points.begin(), node.used_points.end());
+    node.contributes = true; // counted when it is instantiated outside a Shape
     return id;
   }
 
@@ -836,34 +910,70 @@ private:
       read_mf_double(nodes_[id].xyz, 3, "point");
       return true;
     });
+    nodes_[id].contributes = true; // counted when it is instantiated outside a Shape
     return id;
   }
 
   // ------------------------------------------------------------------ output
 
-  void emit(std::size_t id, const Affine& transform)
+  // charges `amount` to the budget of instances, points and triangles; `line` is the node
+  // being instantiated
+  void charge(std::size_t amount, std::size_t line)
   {
-    const Node& node = nodes_[id];
-    switch(node.kind)
+    if(amount > budget_ - spent_)
+      fail("the DEF/USE instances expand to more than " + std::to_string(budget_)
+             + " nodes, points and triangles (the limit for a file of this size, "
+               "VRML_read_options::instance_budget)",
+           line);
+    spent_ += amount;
+  }
+
+  // instantiates the root node `root` and everything below it, depth first, with an explicit
+  // stack: a chain of USEs may be as long as the file
+  void instantiate(std::size_t root)
+  {
+    struct Frame
     {
-    case Node_kind::GROUP:
+      std::size_t node;
+      std::size_t next_child;
+      Affine transform; // the transform of the node's children
+    };
+    std::vector<Frame> stack;
+    auto enter = [&](std::size_t id, const Affine& parent) {
+      const Node& node = nodes_[id];
+      if(!node.contributes)
+        return;
+      charge(1, node.line);
+      switch(node.kind)
+      {
+      case Node_kind::GROUP:
+        stack.push_back(Frame{id, 0, parent * node.local});
+        break;
+      case Node_kind::SHAPE:
+        emit_indexed_face_set(nodes_[node.geometry], parent);
+        break;
+      case Node_kind::INDEXED_FACE_SET:
+      case Node_kind::COORDINATE:
+        // geometry outside a Shape: not rendered, so not read
+        ++result_.skipped_nodes[std::string(node.type) + " outside a Shape"];
+        break;
+      case Node_kind::SKIPPED:
+        break;
+      }
+    };
+    enter(root, Affine());
+    while(!stack.empty())
     {
-      const Affine t = transform * node.local;
-      for(std::size_t child : node.children)
-        emit(child, t);
-      break;
-    }
-    case Node_kind::SHAPE:
-      if(node.geometry != npos && nodes_[node.geometry].kind == Node_kind::INDEXED_FACE_SET)
-        emit_indexed_face_set(nodes_[node.geometry], transform);
-      break;
-    case Node_kind::INDEXED_FACE_SET:
-    case Node_kind::COORDINATE:
-      // geometry outside a Shape: not rendered, so not read
-      ++result_.skipped_nodes[std::string(node.type) + " outside a Shape"];
-      break;
-    case Node_kind::SKIPPED:
-      break;
+      Frame& frame = stack.back();
+      const Node& node = nodes_[frame.node];
+      if(frame.next_child == node.children.size())
+      {
+        stack.pop_back();
+        continue;
+      }
+      const std::size_t child = node.children[frame.next_child++];
+      const Affine transform = frame.transform; // `frame` moves if the stack grows
+      enter(child, transform);
     }
   }
 
@@ -873,14 +983,32 @@ private:
     const std::size_t base = soup_.xyz.size() / 3;
     static const std::vector<double> no_points;
     const std::vector<double>& xyz = ifs.coord == npos ? no_points : nodes_[ifs.coord].xyz;
-    if(transform.identity)
-      soup_.xyz.insert(soup_.xyz.end(), xyz.begin(), xyz.end());
-    else
+    const std::vector<std::uint32_t>& used = ifs.used_points;
+    charge(used.size() + ifs.triangle_count, ifs.line);
+
+    // the points named by coordIndex, in their order in the Coordinate; local_ maps a point of
+    // the Coordinate to its place after `base`
+    if(local_.size() < xyz.size() / 3)
+      local_.resize(xyz.size() / 3);
+    const std::size_t old = soup_.xyz.size();
+    soup_.xyz.resize(old + 3 * used.size());
+    double* out = soup_.xyz.data() + old;
+    for(std::size_t j = 0; j < used.size(); ++j, out += 3)
     {
-      const std::size_t old = soup_.xyz.size();
-      soup_.xyz.resize(old + xyz.size());
-      for(std::size_t i = 0; i < xyz.size(); i += 3)
-        transform.apply(&xyz[i], &soup_.xyz[old + i]);
+      const std::size_t v = used[j];
+      local_[v] = j;
+      const double* p = &xyz[3 * v];
+      if(transform.identity)
+        std::copy(p, p + 3, out);
+      else
+      {
+        transform.apply(p, out);
+        if(!std::isfinite(out[0]) || !std::isfinite(out[1]) || !std::isfinite(out[2]))
+          fail("point " + std::to_string(v) + " of the Coordinate of line "
+                 + std::to_string(nodes_[ifs.coord].line)
+                 + " overflows (is not finite) once transformed to world coordinates",
+               ifs.line);
+      }
     }
     const bool mirrored = !transform.identity && transform.determinant() < 0;
     if(mirrored)
@@ -919,38 +1047,16 @@ private:
       ++result_.number_of_short_polygons;
       return;
     }
-    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
+    auto at = [&](std::size_t i) { return base + local_[static_cast<std::size_t>(poly[i])]; };
     if(k == 3)
     {
       push_triangle(at(0), at(1), at(2), flip);
       return;
     }
     // project to the plane of the Newell normal, oriented so that the polygon turns
-    // counterclockwise
-    double n[3] = {0, 0, 0};
-    for(std::size_t i = 0; i < k; ++i)
-    {
-      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
-      const double* q = &xyz[3 * static_cast<std::size_t>(poly[(i + 1) % k])];
-      n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-      n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-      n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-    }
-    int axis = 0;
-    if(std::abs(n[1]) > std::abs(n[axis]))
-      axis = 1;
-    if(std::abs(n[2]) > std::abs(n[axis]))
-      axis = 2;
-    int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    if(n[axis] < 0)
-      std::swap(u, v);
-    uv_.resize(2 * k);
-    for(std::size_t i = 0; i < k; ++i)
-    {
-      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
-      uv_[2 * i] = p[u];
-      uv_[2 * i + 1] = p[v];
-    }
+    // counterclockwise (in the Coordinate's own frame: an affine map keeps the triangulation valid)
+    const Polygon_projection projection = project_polygon(
+      k, [&](std::size_t i) { return &xyz[3 * static_cast<std::size_t>(poly[i])]; }, uv_);
     auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
       return (uv_[2 * b] - uv_[2 * a]) * (uv_[2 * c + 1] - uv_[2 * a + 1])
            - (uv_[2 * b + 1] - uv_[2 * a + 1]) * (uv_[2 * c] - uv_[2 * a]);
@@ -958,7 +1064,7 @@ private:
 
     // convex: no right turn, and the edge directions sweep around once (at most two sign
     // changes of the u component)
-    bool convex = (n[axis] != 0);
+    bool convex = !projection.degenerate();
     int sign_changes = 0, last_sign = 0;
     for(std::size_t i = 0; convex && i < k; ++i)
     {
@@ -976,7 +1082,7 @@ private:
     }
     if(convex && sign_changes > 2)
       convex = false; // counted cyclically, a simple convex polygon has at most 2 (+1 at wrap)
-    if(n[axis] == 0)
+    if(projection.degenerate())
       convex = true; // degenerate (all corners collinear): nothing better than a fan
 
     if(!convex)
@@ -984,62 +1090,16 @@ private:
       ++result_.number_of_non_convex_polygons;
       if(options_.non_convex_rule == Soup_topology::IO::Non_convex_polygon_rule::EAR_CLIPPING)
       {
-        ear_clip(poly, k, base, flip, turn);
+        const std::size_t left = clipper_.clip(uv_, k, [&](std::size_t a, std::size_t b, std::size_t c) {
+          push_triangle(at(a), at(b), at(c), flip);
+        });
+        if(left != 0)
+          ++result_.number_of_ear_clipping_failures; // no ear left: the rest was fanned
         return;
       }
     }
     for(std::size_t i = 1; i + 1 < k; ++i)
       push_triangle(at(0), at(i), at(i + 1), flip);
-  }
-
-  template <typename Turn>
-  void ear_clip(const std::int32_t* poly, std::size_t k, std::size_t base, bool flip,
-                const Turn& turn)
-  {
-    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
-    auto same = [&](std::size_t a, std::size_t b) {
-      return uv_[2 * a] == uv_[2 * b] && uv_[2 * a + 1] == uv_[2 * b + 1];
-    };
-    std::vector<std::size_t>& ring = ring_;
-    ring.resize(k);
-    for(std::size_t i = 0; i < k; ++i)
-      ring[i] = i;
-    std::size_t cursor = 0, misses = 0;
-    while(ring.size() > 3)
-    {
-      const std::size_t m = ring.size();
-      const std::size_t ia = (cursor + m - 1) % m, ib = cursor % m, ic = (cursor + 1) % m;
-      const std::size_t a = ring[ia], b = ring[ib], c = ring[ic];
-      bool ear = turn(a, b, c) > 0;
-      for(std::size_t j = 0; ear && j < m; ++j)
-      {
-        const std::size_t q = ring[j];
-        if(q == a || q == b || q == c || same(q, a) || same(q, b) || same(q, c))
-          continue;
-        if(turn(a, b, q) >= 0 && turn(b, c, q) >= 0 && turn(c, a, q) >= 0)
-          ear = false;
-      }
-      if(ear)
-      {
-        push_triangle(at(a), at(b), at(c), flip);
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ib));
-        cursor = ib; // the next corner moved into this slot
-        misses = 0;
-      }
-      else
-      {
-        ++cursor;
-        if(++misses > m)
-        {
-          // no ear left (self-intersecting or degenerate rest): fan what remains
-          ++result_.number_of_ear_clipping_failures;
-          for(std::size_t i = 1; i + 1 < m; ++i)
-            push_triangle(at(ring[0]), at(ring[i]), at(ring[i + 1]), flip);
-          return;
-        }
-      }
-    }
-    push_triangle(at(ring[0]), at(ring[1]), at(ring[2]), flip);
   }
 
   const char* p_;
@@ -1053,7 +1113,10 @@ private:
   std::vector<Node> nodes_;
   std::unordered_map<std::string_view, std::size_t> defs_;
   std::vector<double> uv_;
-  std::vector<std::size_t> ring_;
+  Ear_clipper clipper_;
+  std::vector<std::size_t> mark_;  // per point of a Coordinate: 1 + the last IndexedFaceSet that named it
+  std::vector<std::size_t> local_; // per point of a Coordinate: its place among those appended
+  std::size_t budget_ = 0, spent_ = 0;
 };
 
 } // namespace VRML
