@@ -83,18 +83,18 @@ struct VRML_read_options
   /// if `false` (default), the triangles of a shape seen through a mirroring transform
   /// (negative determinant) are reversed so that they keep their orientation in world space
   bool keep_mirrored_orientation = false;
-  /// the most node instances, points and triangles the file may expand to through `DEF`/`USE`
-  /// (each instance of a grouping node or shape counts 1, plus the points and triangles it
-  /// appends); beyond it `read_VRML()` throws `Read_error`. 0 (default):
-  /// `default_instance_budget(file size)`
+  /// the most node instances (grouping nodes, shapes) the file may expand to through
+  /// `DEF`/`USE`; beyond it `read_VRML()` throws `Read_error`. 0 (default): 2^20 + 2 per byte
+  /// of the file, which a file without `USE` never reaches (a node takes more than 2 bytes)
   std::size_t instance_budget = 0;
+  /// the most points and triangles the file may expand to through `DEF`/`USE`; beyond it
+  /// `read_VRML()` throws `Read_error`. 0 (default): 2^21 + 8 per byte of the file, which a
+  /// file without `USE` never reaches (it needs at least 6 bytes per point and 2 per triangle)
+  std::size_t output_budget = 0;
 
-  /// 2^21 + 8 per byte of the file. A file without `USE` never reaches it: it needs at least
-  /// 6 bytes per point and about 2 per triangle.
-  static std::size_t default_instance_budget(std::size_t bytes)
+  /// `base` + `per_byte` * `bytes`, saturated
+  static std::size_t budget(std::size_t base, std::size_t per_byte, std::size_t bytes)
   {
-    const std::size_t per_byte = 8;
-    const std::size_t base = std::size_t(1) << 21;
     if(bytes > (std::size_t(-1) - base) / per_byte)
       return std::size_t(-1);
     return base + per_byte * bytes;

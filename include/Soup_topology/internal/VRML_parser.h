@@ -183,8 +183,11 @@ public:
     : p_(begin), end_(end), name_(name), options_(options), result_(result), soup_(soup)
   {
     const std::size_t bytes = static_cast<std::size_t>(end - begin);
-    budget_ = options.instance_budget != 0 ? options.instance_budget
-                                           : Soup_topology::IO::VRML_read_options::default_instance_budget(bytes);
+    using Options = Soup_topology::IO::VRML_read_options;
+    instance_budget_ = options.instance_budget != 0 ? options.instance_budget
+                                                    : Options::budget(std::size_t(1) << 20, 2, bytes);
+    output_budget_ = options.output_budget != 0 ? options.output_budget
+                                                : Options::budget(std::size_t(1) << 21, 8, bytes);
   }
 
   void run()
@@ -916,16 +919,23 @@ private:
 
   // ------------------------------------------------------------------ output
 
-  // charges `amount` to the budget of instances, points and triangles; `line` is the node
-  // being instantiated
-  void charge(std::size_t amount, std::size_t line)
+  // counts one more node instance; `line` is the node's
+  void charge_instance(std::size_t line)
   {
-    if(amount > budget_ - spent_)
-      fail("the DEF/USE instances expand to more than " + std::to_string(budget_)
-             + " nodes, points and triangles (the limit for a file of this size, "
-               "VRML_read_options::instance_budget)",
+    if(++instances_ > instance_budget_)
+      fail("the DEF/USE instances expand to more than " + std::to_string(instance_budget_)
+             + " node instances (the limit for a file of this size, VRML_read_options::instance_budget)",
            line);
-    spent_ += amount;
+  }
+
+  // counts `amount` more points and triangles; `line` is the IndexedFaceSet's
+  void charge_output(std::size_t amount, std::size_t line)
+  {
+    if(amount > output_budget_ - output_)
+      fail("the DEF/USE instances expand to more than " + std::to_string(output_budget_)
+             + " points and triangles (the limit for a file of this size, VRML_read_options::output_budget)",
+           line);
+    output_ += amount;
   }
 
   // instantiates the root node `root` and everything below it, depth first, with an explicit
@@ -936,21 +946,29 @@ private:
     {
       std::size_t node;
       std::size_t next_child;
-      Affine transform; // the transform of the node's children
+      std::size_t transform; // in `transforms`: the transform of the node's children
+      bool owns_transform;   // whether the frame pushed it (else it shares its parent's)
     };
     std::vector<Frame> stack;
-    auto enter = [&](std::size_t id, const Affine& parent) {
+    std::vector<Affine> transforms{Affine()}; // a stack too, shared by frames of the same transform
+    auto enter = [&](std::size_t id, std::size_t parent) {
       const Node& node = nodes_[id];
       if(!node.contributes)
         return;
-      charge(1, node.line);
+      charge_instance(node.line);
       switch(node.kind)
       {
       case Node_kind::GROUP:
-        stack.push_back(Frame{id, 0, parent * node.local});
+        if(node.local.identity)
+          stack.push_back(Frame{id, 0, parent, false});
+        else
+        {
+          transforms.push_back(transforms[parent] * node.local);
+          stack.push_back(Frame{id, 0, transforms.size() - 1, true});
+        }
         break;
       case Node_kind::SHAPE:
-        emit_indexed_face_set(nodes_[node.geometry], parent);
+        emit_indexed_face_set(nodes_[node.geometry], transforms[parent]);
         break;
       case Node_kind::INDEXED_FACE_SET:
       case Node_kind::COORDINATE:
@@ -961,19 +979,20 @@ private:
         break;
       }
     };
-    enter(root, Affine());
+    enter(root, 0);
     while(!stack.empty())
     {
       Frame& frame = stack.back();
-      const Node& node = nodes_[frame.node];
-      if(frame.next_child == node.children.size())
+      const std::vector<std::size_t>& children = nodes_[frame.node].children;
+      if(frame.next_child == children.size())
       {
+        if(frame.owns_transform)
+          transforms.pop_back();
         stack.pop_back();
         continue;
       }
-      const std::size_t child = node.children[frame.next_child++];
-      const Affine transform = frame.transform; // `frame` moves if the stack grows
-      enter(child, transform);
+      const std::size_t child = children[frame.next_child++];
+      enter(child, frame.transform); // may move `frame`: not used after
     }
   }
 
@@ -984,7 +1003,7 @@ private:
     static const std::vector<double> no_points;
     const std::vector<double>& xyz = ifs.coord == npos ? no_points : nodes_[ifs.coord].xyz;
     const std::vector<std::uint32_t>& used = ifs.used_points;
-    charge(used.size() + ifs.triangle_count, ifs.line);
+    charge_output(used.size() + ifs.triangle_count, ifs.line);
 
     // the points named by coordIndex, in their order in the Coordinate; local_ maps a point of
     // the Coordinate to its place after `base`
@@ -1116,7 +1135,7 @@ private:
   Ear_clipper clipper_;
   std::vector<std::size_t> mark_;  // per point of a Coordinate: 1 + the last IndexedFaceSet that named it
   std::vector<std::size_t> local_; // per point of a Coordinate: its place among those appended
-  std::size_t budget_ = 0, spent_ = 0;
+  std::size_t instance_budget_ = 0, instances_ = 0, output_budget_ = 0, output_ = 0;
 };
 
 } // namespace VRML
