@@ -82,17 +82,19 @@ public:
   /// the set {0, ..., n-1}
   void fill(std::size_t n)
   {
-    levels_.clear();
-    std::size_t size = n;
+    std::size_t depth = 0, size = n;
     do
     {
       const std::size_t words = (size + 63) / 64;
-      std::vector<std::uint64_t> level(words, ~std::uint64_t(0));
+      if(levels_.size() <= depth)
+        levels_.emplace_back();
+      std::vector<std::uint64_t>& level = levels_[depth++]; // reused: no allocation per polygon
+      level.assign(words, ~std::uint64_t(0));
       if(size % 64 != 0)
         level.back() = (std::uint64_t(1) << (size % 64)) - 1;
-      levels_.push_back(std::move(level));
       size = words;
     } while(size > 1);
+    levels_.resize(depth);
   }
 
   void insert(std::size_t i)
