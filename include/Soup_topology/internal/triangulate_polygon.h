@@ -180,8 +180,9 @@ private:
 /// (a self-intersecting or degenerate rest), the remaining corners are fanned from the first of
 /// them in polygon order, and their number is returned (0 when every corner was clipped).
 ///
-/// That is the textbook quadratic walk; the same decisions are reached in near-linear time in
-/// practice by two means. The search for a corner in a triangle goes down a k-d tree of the
+/// That is the textbook quadratic walk; the same decisions (but for needle triangles, sharper
+/// than about 1e-7 radians, where rounding errors decide either way) are reached in near-linear
+/// time in practice by two means. The search for a corner in a triangle goes down a k-d tree of the
 /// corners that skips the subtrees whose corners are all clipped and those whose box lies
 /// outside the triangle (beyond a margin far above rounding errors, so that every corner the
 /// rule would find is visited). And a corner found not to be an ear keeps that status until one
@@ -504,7 +505,16 @@ private:
 /// When no ear is left (a self-intersecting or degenerate rest, e.g. all corners collinear),
 /// the remaining corners are fanned from the first of them in polygon order and their number
 /// is returned: `triangles` gains polygon.size()-2 entries for every polygon of 3 or more
-/// corners. A polygon of fewer than 3 corners adds nothing and returns its size.
+/// corners. A polygon of fewer than 3 corners adds nothing and returns its size. The same
+/// happens past the work cap of `Ear_clipper` (about 32 log2(k) visits per corner). The
+/// triangles keep the orientation of the polygon. The rule and the order of the clips are
+/// those of `Ear_clipper`.
+///
+/// \tparam Point a point type with `x()`, `y()`, `z()` (`CGAL::Point_3` of any kernel)
+/// \param points the points the polygon's corners refer to
+/// \param polygon the corners, in order (indices into `points`)
+/// \param triangles where the triangles are appended, as indices into `points`
+/// \return the number of corners left to the fan (0 if every ear was clipped)
 template <class Point>
 std::size_t triangulate_polygon(const std::vector<Point>& points, const std::vector<std::size_t>& polygon,
                                 std::vector<std::array<std::size_t, 3>>& triangles)
