@@ -5,8 +5,15 @@
 # timeout, an allocation beyond the limits or a broken invariant fails the script; the input
 # that caused it is left in $build/artifacts/. README.md ("Hardening") describes a long run.
 #   FUZZ_SECONDS     seconds per target (default 30)
-#   FUZZ_TARGETS     targets to run (default: all, "stl_binary stl_ascii off obj ply vrml pipeline")
+#   FUZZ_TARGETS     targets to run (default: all, "stl_binary stl_ascii off obj ply vrml triangulate pipeline")
+#   FUZZ_TIMEOUT     seconds one input may take before it counts as a hang (default 10: every
+#                    reader bounds its work by the input's size, 64 KB at most here)
+#   FUZZ_RSS_MB      resident memory beyond which the run fails (default 2048)
 #   FUZZ_BUILD_DIR   build folder (default build-fuzz)
+# The VRML target gets a dictionary of the grammar (fuzz/vrml.dict) besides its seeds (DEF/USE
+# DAGs and chains, nested transforms, shared Coordinates, non-convex polygons).
+# A nightly run of the VRML reader and the triangulator, about 8 hours:
+#   FUZZ_SECONDS=14400 FUZZ_TARGETS="vrml triangulate" bash scripts/run_fuzz.sh
 #   SOUP_TOPOLOGY_DATA_DIR  the shared data folder (default ../shared/data)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,14 +31,18 @@ fi
 
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${FUZZ_SECONDS:-30}
-targets=${FUZZ_TARGETS:-"stl_binary stl_ascii off obj ply vrml pipeline"}
+targets=${FUZZ_TARGETS:-"stl_binary stl_ascii off obj ply vrml triangulate pipeline"}
+timeout=${FUZZ_TIMEOUT:-10}
+rss_mb=${FUZZ_RSS_MB:-2048}
 jobs=${JOBS:-$(nproc)}
 data=${SOUP_TOPOLOGY_DATA_DIR:-../shared/data}
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
       -DSOUP_TOPOLOGY_BUILD_TESTS=OFF -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF \
       -DSOUP_TOPOLOGY_BUILD_FUZZERS=ON > /dev/null
-cmake --build "$build" -j "$jobs" # only the fuzz targets are configured
+for t in $targets; do
+  cmake --build "$build" -j "$jobs" --target "fuzz_$t" # only the fuzz targets are configured
+done
 
 # Seeds: ours, then the shared files of the target's format up to 64 KB (read in place, not copied
 # into the repository: some carry GPL or CC-BY-SA terms).
@@ -56,12 +67,14 @@ for t in $targets; do
   mkdir -p "$seeds" "$corpus"
   cp fuzz/corpus/"$t"/* "$seeds"/
   for f in $(seeds_from_data "$t"); do cp "$f" "$seeds/data_$(basename "$f")"; done
-  case $t in pipeline) max_len=512 ;; *) max_len=65536 ;; esac
+  case $t in pipeline) max_len=512 ;; triangulate) max_len=16384 ;; *) max_len=65536 ;; esac
+  extra=()
+  [ -f "fuzz/$t.dict" ] && extra+=("-dict=fuzz/$t.dict")
   log="$build/fuzz_$t.log"
   echo "fuzz_$t: ${seconds} s, seeds: $(ls "$seeds" | wc -l) files"
   if ! "$build/fuzz/fuzz_$t" "$corpus" "$seeds" -max_total_time="$seconds" -max_len="$max_len" \
-       -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
-       -artifact_prefix="$build/artifacts/$t-" > "$log" 2>&1; then
+       -timeout="$timeout" -rss_limit_mb="$rss_mb" -malloc_limit_mb=1024 -print_final_stats=1 \
+       ${extra[@]+"${extra[@]}"} -artifact_prefix="$build/artifacts/$t-" > "$log" 2>&1; then
     echo "fuzz_$t FAILED, see $log:"
     grep -E "ERROR|invariant violated|SUMMARY|Test unit written" "$log" | head -20 || true
     status=1

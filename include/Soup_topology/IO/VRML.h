@@ -25,9 +25,13 @@
 /// every `IndexedFaceSet` of every `Shape` becomes triangles of one soup.
 ///
 /// Supported: the `#VRML V2.0 utf8` header (a file without header is read too; a VRML 1.0
-/// header is an error), `#` comments, any whitespace and commas; `Shape { geometry
+/// header is an error, and so is a gzip-compressed file), `#` comments, whitespace (space, tab,
+/// carriage return, line feed) and commas (any other control byte outside comments and strings
+/// is an error: binary data is not read as an empty scene); `Shape { geometry
 /// IndexedFaceSet { coord Coordinate { point [...] } coordIndex [...] ccw ... } }` with `-1`
-/// separators (the last polygon may lack its `-1`); `DEF`/`USE` of any node; grouping nodes
+/// separators (the last polygon may lack its `-1`); `DEF`/`USE` of any node (every use is a new instance; the instances of the whole file are
+/// bounded by `VRML_read_options::instance_budget`, by default proportional to the file size,
+/// and subtrees that hold no geometry are not instantiated at all); grouping nodes
 /// `Transform`, `Group`, `Anchor` and `Collision` with their `children`, nested to any depth;
 /// `Transform`'s `translation`, `rotation` (axis-angle), `scale`, `scaleOrientation` and
 /// `center`, composed along the path from the root. The other fields of `IndexedFaceSet`
@@ -47,11 +51,16 @@
 /// corner, a non-convex one is ear-clipped in that plane (or fanned, see
 /// `Non_convex_polygon_rule`), keeping the polygon's orientation; if ear clipping finds no ear
 /// (self-intersecting polygon) the rest is fanned and counted. A polygon of fewer than 3
-/// corners is dropped and counted. Nothing is welded: every instance of a `Coordinate` node
-/// appends all its points to the soup, and triangles refer to them.
+/// corners is dropped and counted. Ear clipping is that of
+/// `Soup_topology/internal/triangulate_polygon.h`: near-linear in practice, and capped at
+/// O(k log k) work for a polygon of k corners, beyond which the rest is fanned and counted as an
+/// ear clipping failure. Nothing is welded: every instance of an `IndexedFaceSet` appends the
+/// points of its `Coordinate` that its `coordIndex` names (all of them, in a file that names
+/// every point), in their order, and its triangles refer to them.
 ///
 /// Malformed input (unbalanced brackets, an index out of range, a number that does not parse,
-/// an unexpected end of file, a `USE` of an undefined name) throws `Read_error` (from
+/// an unexpected end of file, a `USE` of an undefined name, a point that overflows once
+/// transformed, instances beyond the budget) throws `Read_error` (from
 /// `Soup_topology/IO/Read_error.h`), whose message reads `"<name>:<line>: <description>"`, where
 /// `<name>` is the file name (`VRML` when reading a stream) and `<line>` is 1-based. The caller's ranges are left as they were when an exception is thrown.
 
@@ -74,6 +83,22 @@ struct VRML_read_options
   /// if `false` (default), the triangles of a shape seen through a mirroring transform
   /// (negative determinant) are reversed so that they keep their orientation in world space
   bool keep_mirrored_orientation = false;
+  /// the most node instances (grouping nodes, shapes) the file may expand to through
+  /// `DEF`/`USE`; beyond it `read_VRML()` throws `Read_error`. 0 (default): 2^20 + 2 per byte
+  /// of the file, which a file without `USE` never reaches (a node takes more than 2 bytes)
+  std::size_t instance_budget = 0;
+  /// the most points and triangles the file may expand to through `DEF`/`USE`; beyond it
+  /// `read_VRML()` throws `Read_error`. 0 (default): 2^21 + 8 per byte of the file, which a
+  /// file without `USE` never reaches (it needs at least 6 bytes per point and 2 per triangle)
+  std::size_t output_budget = 0;
+
+  /// `base` + `per_byte` * `bytes`, saturated
+  static std::size_t budget(std::size_t base, std::size_t per_byte, std::size_t bytes)
+  {
+    if(bytes > (std::size_t(-1) - base) / per_byte)
+      return std::size_t(-1);
+    return base + per_byte * bytes;
+  }
 };
 
 /// \ingroup PkgSoupTopologyIO
@@ -84,7 +109,7 @@ struct VRML_read_result
   /// `Shape`-with-`IndexedFaceSet` instance met in traversal order, 1 for the next, ...
   std::vector<std::size_t> triangle_shape_ids;
   std::size_t number_of_shapes = 0;             ///< `Shape` instances with an `IndexedFaceSet` (a `USE` counts again)
-  std::size_t number_of_points = 0;             ///< points appended
+  std::size_t number_of_points = 0;             ///< points appended (those named by `coordIndex`)
   std::size_t number_of_triangles = 0;          ///< triangles appended
   std::size_t number_of_polygons = 0;           ///< polygons read (`coordIndex` entries)
   std::size_t number_of_short_polygons = 0;     ///< polygons of fewer than 3 corners, dropped

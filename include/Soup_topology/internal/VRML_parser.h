@@ -10,7 +10,10 @@
 #define SOUP_TOPOLOGY_INTERNAL_VRML_PARSER_H
 
 #include <Soup_topology/IO/VRML.h>
+#include <Soup_topology/internal/VRML_lexer.h>
+#include <Soup_topology/internal/triangulate_polygon.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -124,6 +127,9 @@ struct Node
   Node_kind kind = Node_kind::SKIPPED;
   std::string_view type;            // the node's type name as written
   std::size_t line = 0;             // where the node starts
+  // whether an instance adds anything to the output (a shape, or a count of geometry outside a
+  // shape): the instantiation skips the others, which can be DAGs of astronomical size
+  bool contributes = false;
   // GROUP
   Affine local;
   std::vector<std::size_t> children;
@@ -134,6 +140,8 @@ struct Node
   std::vector<std::int32_t> coord_index;
   std::vector<std::pair<std::size_t, std::size_t>> index_lines; // (first position, line) at each line change
   bool ccw = true;
+  std::size_t triangle_count = 0;         // triangles an instance gives (k - 2 per polygon of k >= 3)
+  std::vector<std::uint32_t> used_points; // the points of coord that coordIndex names, in increasing order
   // COORDINATE
   std::vector<double> xyz;
 
@@ -152,20 +160,8 @@ struct Node
   }
 };
 
-inline bool is_delimiter(char c)
+class Parser : private Lexer
 {
-  return static_cast<unsigned char>(c) <= ' ' || c == ',' || c == '#' || c == '{' || c == '}'
-      || c == '[' || c == ']' || c == '"';
-}
-
-inline bool starts_number(char c)
-{
-  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
-}
-
-class Parser
-{
-  using Read_error = Soup_topology::IO::Read_error;
   static constexpr std::size_t npos = Node::npos;
   static constexpr std::size_t max_depth = 1000;
 
@@ -173,8 +169,15 @@ public:
   Parser(const char* begin, const char* end, const std::string& name,
          const Soup_topology::IO::VRML_read_options& options,
          Soup_topology::IO::VRML_read_result& result, Soup& soup)
-    : p_(begin), end_(end), name_(name), options_(options), result_(result), soup_(soup)
-  {}
+    : Lexer(begin, end, name), options_(options), result_(result), soup_(soup)
+  {
+    const std::size_t bytes = static_cast<std::size_t>(end - begin);
+    using Options = Soup_topology::IO::VRML_read_options;
+    instance_budget_ = options.instance_budget != 0 ? options.instance_budget
+                                                    : Options::budget(std::size_t(1) << 20, 2, bytes);
+    output_budget_ = options.output_budget != 0 ? options.output_budget
+                                                : Options::budget(std::size_t(1) << 21, 8, bytes);
+  }
 
   void run()
   {
@@ -196,133 +199,13 @@ public:
         roots.push_back(id);
     }
     for(std::size_t id : roots)
-      emit(id, Affine());
+      instantiate(id);
     result_.number_of_points = soup_.xyz.size() / 3;
     result_.number_of_triangles = soup_.triangles.size();
   }
 
 private:
-  // ------------------------------------------------------------------ errors
-
-  [[noreturn]] void fail(const std::string& description, std::size_t line) const
-  {
-    throw Read_error(name_ + ":" + std::to_string(line) + ": " + description);
-  }
-
-  [[noreturn]] void fail_eof(const char* what, std::size_t open_line) const
-  {
-    std::string d = std::string("unexpected end of file while reading ") + what;
-    if(open_line != 0)
-      d += " (opened at line " + std::to_string(open_line) + ")";
-    fail(d, line_);
-  }
-
-  std::string quote_here() const
-  {
-    if(p_ == end_)
-      return "end of file";
-    const char* q = p_;
-    if(is_delimiter(*q))
-      return std::string("'") + *q + "'";
-    while(q != end_ && !is_delimiter(*q) && q - p_ < 40)
-      ++q;
-    return "'" + std::string(p_, q) + "'";
-  }
-
-  // ------------------------------------------------------------------ tokens
-
-  void read_header()
-  {
-    if(end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) // UTF-8 byte order mark
-      p_ += 3;
-    if(end_ - p_ >= 5 && std::memcmp(p_, "#VRML", 5) == 0)
-    {
-      const char* q = p_ + 5;
-      while(q != end_ && (*q == ' ' || *q == '\t'))
-        ++q;
-      if(!(end_ - q >= 4 && std::memcmp(q, "V2.0", 4) == 0))
-        fail("unsupported VRML version (only VRML 2.0 / VRML97 is read)", 1);
-    }
-  }
-
-  void skip_space()
-  {
-    while(p_ != end_)
-    {
-      const char c = *p_;
-      if(c == '\n')
-      {
-        ++line_;
-        ++p_;
-      }
-      else if(static_cast<unsigned char>(c) <= ' ' || c == ',')
-        ++p_;
-      else if(c == '#')
-      {
-        while(p_ != end_ && *p_ != '\n')
-          ++p_;
-      }
-      else
-        return;
-    }
-  }
-
-  // next non-space character, 0 at the end
-  char peek()
-  {
-    skip_space();
-    return p_ == end_ ? '\0' : *p_;
-  }
-
-  std::string_view read_word(const char* what, std::size_t open_line = 0)
-  {
-    skip_space();
-    if(p_ == end_)
-      fail_eof(what, open_line);
-    const char* b = p_;
-    while(p_ != end_ && !is_delimiter(*p_))
-      ++p_;
-    if(p_ == b)
-      fail(std::string("expected ") + what + ", found " + quote_here(), line_);
-    return std::string_view(b, static_cast<std::size_t>(p_ - b));
-  }
-
-  // the next word, not consumed (empty if the next token is not a word)
-  std::string_view peek_word()
-  {
-    skip_space();
-    const char* q = p_;
-    while(q != end_ && !is_delimiter(*q))
-      ++q;
-    return std::string_view(p_, static_cast<std::size_t>(q - p_));
-  }
-
-  void expect(char c, const char* what, std::size_t open_line)
-  {
-    skip_space();
-    if(p_ == end_)
-      fail_eof(what, open_line);
-    if(*p_ != c)
-      fail(std::string("expected '") + c + "' in " + what + ", found " + quote_here(), line_);
-    ++p_;
-  }
-
-  void skip_string()
-  {
-    const std::size_t open_line = line_;
-    ++p_; // opening quote
-    while(p_ != end_ && *p_ != '"')
-    {
-      if(*p_ == '\\' && p_ + 1 != end_)
-        ++p_;
-      if(*p_ == '\n')
-        ++line_;
-      ++p_;
-    }
-    if(p_ == end_)
-      fail_eof("a string", open_line);
-    ++p_;
-  }
+  // ------------------------------------------------------------------ syntax
 
   // skips up to the bracket matching the one just consumed (`open`, at `open_line`), checking
   // that brackets nest; `DEF name Type` met inside registers `name` as a skipped node
@@ -364,114 +247,6 @@ private:
         }
       }
     }
-  }
-
-  double read_double(const char* what)
-  {
-    skip_space();
-    if(p_ == end_)
-      fail_eof(what, 0);
-    const char* b = p_;
-    if(*b == '+')
-      ++b;
-    double v = 0;
-    const auto r = std::from_chars(b, end_, v);
-    if(r.ec != std::errc() || (r.ptr != end_ && !is_delimiter(*r.ptr)) || !std::isfinite(v))
-      fail(std::string("cannot read a number (") + what + ") from " + quote_here(), line_);
-    p_ = r.ptr;
-    return v;
-  }
-
-  std::int32_t read_int32(const char* what)
-  {
-    skip_space();
-    if(p_ == end_)
-      fail_eof(what, 0);
-    const char* b = p_;
-    bool negative = false;
-    if(*b == '+' || *b == '-')
-    {
-      negative = (*b == '-');
-      ++b;
-    }
-    int base = 10;
-    if(end_ - b > 2 && b[0] == '0' && (b[1] == 'x' || b[1] == 'X'))
-    {
-      base = 16;
-      b += 2;
-    }
-    std::int64_t v = 0;
-    const auto r = std::from_chars(b, end_, v, base);
-    if(r.ec != std::errc() || (r.ptr != end_ && !is_delimiter(*r.ptr)))
-      fail(std::string("cannot read an integer (") + what + ") from " + quote_here(), line_);
-    if(negative)
-      v = -v;
-    if(v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
-      fail(std::string("integer out of the 32-bit range (") + what + "): " + quote_here(), line_);
-    p_ = r.ptr;
-    return static_cast<std::int32_t>(v);
-  }
-
-  bool read_bool(const char* what)
-  {
-    skip_space();
-    const std::size_t line = line_;
-    const std::string_view w = read_word(what);
-    if(w == "TRUE")
-      return true;
-    if(w == "FALSE")
-      return false;
-    fail(std::string("expected TRUE or FALSE for ") + what + ", found '" + std::string(w) + "'", line);
-  }
-
-  // inside a list of numbers opened at `open_line`: a bracket here is an error
-  void check_list_item(std::size_t open_line) const
-  {
-    const char c = *p_;
-    if(c == '{' || c == '}' || c == '[')
-      fail(std::string("unbalanced '") + c + "' in a list of numbers ('[' opened at line "
-             + std::to_string(open_line) + ")",
-           line_);
-  }
-
-  // reads an MFFloat-like field of `tuple`-sized values: `[ a b c, ... ]` or a single value
-  void read_mf_double(std::vector<double>& out, std::size_t tuple, const char* what)
-  {
-    skip_space();
-    if(p_ != end_ && *p_ == '[')
-    {
-      const std::size_t open_line = line_;
-      ++p_;
-      const std::size_t start = out.size();
-      for(;;)
-      {
-        skip_space();
-        if(p_ == end_)
-          fail_eof(what, open_line);
-        if(*p_ == ']')
-        {
-          ++p_;
-          break;
-        }
-        check_list_item(open_line);
-        out.push_back(read_double(what));
-      }
-      if((out.size() - start) % tuple != 0)
-        fail(std::string(what) + ": " + std::to_string(out.size() - start)
-               + " numbers, not a multiple of " + std::to_string(tuple),
-             open_line);
-    }
-    else
-    {
-      for(std::size_t i = 0; i < tuple; ++i)
-        out.push_back(read_double(what));
-    }
-  }
-
-  void read_sf_doubles(double* out, std::size_t n, const char* what)
-  {
-    for(std::size_t i = 0; i < n; ++i)
-      out[i] = read_double(what);
   }
 
   void read_coord_index(Node& node)
@@ -764,6 +539,8 @@ private:
                        * sr * Affine::scaling(scale) * sr_inverse
                        * Affine::translation(minus_center);
     }
+    for(std::size_t child : nodes_[id].children)
+      nodes_[id].contributes = nodes_[id].contributes || nodes_[child].contributes;
     return id;
   }
 
@@ -785,6 +562,8 @@ private:
       }
       return false;
     });
+    const std::size_t g = nodes_[id].geometry;
+    nodes_[id].contributes = (g != npos && nodes_[g].kind == Node_kind::INDEXED_FACE_SET);
     return id;
   }
 
@@ -823,6 +602,30 @@ private:
                + std::to_string(n) + " points",
              node.line_of_index(i));
     }
+    // what an instance gives: the triangles, and the points named (an instance appends only
+    // those, so that many small shapes sharing one large Coordinate stay small)
+    std::size_t corners = 0;
+    for(std::size_t i = 0; i <= node.coord_index.size(); ++i)
+    {
+      if(i == node.coord_index.size() || node.coord_index[i] == -1)
+      {
+        if(corners >= 3)
+          node.triangle_count += corners - 2;
+        corners = 0;
+        continue;
+      }
+      ++corners;
+      const std::size_t v = static_cast<std::size_t>(node.coord_index[i]);
+      if(mark_.size() <= v)
+        mark_.resize(v + 1, 0);
+      if(mark_[v] != id + 1)
+      {
+        mark_[v] = id + 1;
+        node.used_points.push_back(static_cast<std::uint32_t>(v));
+      }
+    }
+    std::sort(node.used_points.begin(), node.used_points.end());
+    node.contributes = true; // counted when it is instantiated outside a Shape
     return id;
   }
 
@@ -836,34 +639,86 @@ private:
       read_mf_double(nodes_[id].xyz, 3, "point");
       return true;
     });
+    nodes_[id].contributes = true; // counted when it is instantiated outside a Shape
     return id;
   }
 
   // ------------------------------------------------------------------ output
 
-  void emit(std::size_t id, const Affine& transform)
+  // counts one more node instance; `line` is the node's
+  void charge_instance(std::size_t line)
   {
-    const Node& node = nodes_[id];
-    switch(node.kind)
+    if(++instances_ > instance_budget_)
+      fail("the DEF/USE instances expand to more than " + std::to_string(instance_budget_)
+             + " node instances (the limit for a file of this size, VRML_read_options::instance_budget)",
+           line);
+  }
+
+  // counts `amount` more points and triangles; `line` is the IndexedFaceSet's
+  void charge_output(std::size_t amount, std::size_t line)
+  {
+    if(amount > output_budget_ - output_)
+      fail("the DEF/USE instances expand to more than " + std::to_string(output_budget_)
+             + " points and triangles (the limit for a file of this size, VRML_read_options::output_budget)",
+           line);
+    output_ += amount;
+  }
+
+  // instantiates the root node `root` and everything below it, depth first, with an explicit
+  // stack: a chain of USEs may be as long as the file
+  void instantiate(std::size_t root)
+  {
+    struct Frame
     {
-    case Node_kind::GROUP:
+      std::size_t node;
+      std::size_t next_child;
+      std::size_t transform; // in `transforms`: the transform of the node's children
+      bool owns_transform;   // whether the frame pushed it (else it shares its parent's)
+    };
+    std::vector<Frame> stack;
+    std::vector<Affine> transforms{Affine()}; // a stack too, shared by frames of the same transform
+    auto enter = [&](std::size_t id, std::size_t parent) {
+      const Node& node = nodes_[id];
+      if(!node.contributes)
+        return;
+      charge_instance(node.line);
+      switch(node.kind)
+      {
+      case Node_kind::GROUP:
+        if(node.local.identity)
+          stack.push_back(Frame{id, 0, parent, false});
+        else
+        {
+          transforms.push_back(transforms[parent] * node.local);
+          stack.push_back(Frame{id, 0, transforms.size() - 1, true});
+        }
+        break;
+      case Node_kind::SHAPE:
+        emit_indexed_face_set(nodes_[node.geometry], transforms[parent]);
+        break;
+      case Node_kind::INDEXED_FACE_SET:
+      case Node_kind::COORDINATE:
+        // geometry outside a Shape: not rendered, so not read
+        ++result_.skipped_nodes[std::string(node.type) + " outside a Shape"];
+        break;
+      case Node_kind::SKIPPED:
+        break;
+      }
+    };
+    enter(root, 0);
+    while(!stack.empty())
     {
-      const Affine t = transform * node.local;
-      for(std::size_t child : node.children)
-        emit(child, t);
-      break;
-    }
-    case Node_kind::SHAPE:
-      if(node.geometry != npos && nodes_[node.geometry].kind == Node_kind::INDEXED_FACE_SET)
-        emit_indexed_face_set(nodes_[node.geometry], transform);
-      break;
-    case Node_kind::INDEXED_FACE_SET:
-    case Node_kind::COORDINATE:
-      // geometry outside a Shape: not rendered, so not read
-      ++result_.skipped_nodes[std::string(node.type) + " outside a Shape"];
-      break;
-    case Node_kind::SKIPPED:
-      break;
+      Frame& frame = stack.back();
+      const std::vector<std::size_t>& children = nodes_[frame.node].children;
+      if(frame.next_child == children.size())
+      {
+        if(frame.owns_transform)
+          transforms.pop_back();
+        stack.pop_back();
+        continue;
+      }
+      const std::size_t child = children[frame.next_child++];
+      enter(child, frame.transform); // may move `frame`: not used after
     }
   }
 
@@ -873,14 +728,32 @@ private:
     const std::size_t base = soup_.xyz.size() / 3;
     static const std::vector<double> no_points;
     const std::vector<double>& xyz = ifs.coord == npos ? no_points : nodes_[ifs.coord].xyz;
-    if(transform.identity)
-      soup_.xyz.insert(soup_.xyz.end(), xyz.begin(), xyz.end());
-    else
+    const std::vector<std::uint32_t>& used = ifs.used_points;
+    charge_output(used.size() + ifs.triangle_count, ifs.line);
+
+    // the points named by coordIndex, in their order in the Coordinate; local_ maps a point of
+    // the Coordinate to its place after `base`
+    if(local_.size() < xyz.size() / 3)
+      local_.resize(xyz.size() / 3);
+    const std::size_t old = soup_.xyz.size();
+    soup_.xyz.resize(old + 3 * used.size());
+    double* out = soup_.xyz.data() + old;
+    for(std::size_t j = 0; j < used.size(); ++j, out += 3)
     {
-      const std::size_t old = soup_.xyz.size();
-      soup_.xyz.resize(old + xyz.size());
-      for(std::size_t i = 0; i < xyz.size(); i += 3)
-        transform.apply(&xyz[i], &soup_.xyz[old + i]);
+      const std::size_t v = used[j];
+      local_[v] = j;
+      const double* p = &xyz[3 * v];
+      if(transform.identity)
+        std::copy(p, p + 3, out);
+      else
+      {
+        transform.apply(p, out);
+        if(!std::isfinite(out[0]) || !std::isfinite(out[1]) || !std::isfinite(out[2]))
+          fail("point " + std::to_string(v) + " of the Coordinate of line "
+                 + std::to_string(nodes_[ifs.coord].line)
+                 + " overflows (is not finite) once transformed to world coordinates",
+               ifs.line);
+      }
     }
     const bool mirrored = !transform.identity && transform.determinant() < 0;
     if(mirrored)
@@ -919,38 +792,16 @@ private:
       ++result_.number_of_short_polygons;
       return;
     }
-    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
+    auto at = [&](std::size_t i) { return base + local_[static_cast<std::size_t>(poly[i])]; };
     if(k == 3)
     {
       push_triangle(at(0), at(1), at(2), flip);
       return;
     }
     // project to the plane of the Newell normal, oriented so that the polygon turns
-    // counterclockwise
-    double n[3] = {0, 0, 0};
-    for(std::size_t i = 0; i < k; ++i)
-    {
-      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
-      const double* q = &xyz[3 * static_cast<std::size_t>(poly[(i + 1) % k])];
-      n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-      n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-      n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-    }
-    int axis = 0;
-    if(std::abs(n[1]) > std::abs(n[axis]))
-      axis = 1;
-    if(std::abs(n[2]) > std::abs(n[axis]))
-      axis = 2;
-    int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    if(n[axis] < 0)
-      std::swap(u, v);
-    uv_.resize(2 * k);
-    for(std::size_t i = 0; i < k; ++i)
-    {
-      const double* p = &xyz[3 * static_cast<std::size_t>(poly[i])];
-      uv_[2 * i] = p[u];
-      uv_[2 * i + 1] = p[v];
-    }
+    // counterclockwise (in the Coordinate's own frame: an affine map keeps the triangulation valid)
+    const Polygon_projection projection = project_polygon(
+      k, [&](std::size_t i) { return &xyz[3 * static_cast<std::size_t>(poly[i])]; }, uv_);
     auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
       return (uv_[2 * b] - uv_[2 * a]) * (uv_[2 * c + 1] - uv_[2 * a + 1])
            - (uv_[2 * b + 1] - uv_[2 * a + 1]) * (uv_[2 * c] - uv_[2 * a]);
@@ -958,7 +809,7 @@ private:
 
     // convex: no right turn, and the edge directions sweep around once (at most two sign
     // changes of the u component)
-    bool convex = (n[axis] != 0);
+    bool convex = !projection.degenerate();
     int sign_changes = 0, last_sign = 0;
     for(std::size_t i = 0; convex && i < k; ++i)
     {
@@ -976,7 +827,7 @@ private:
     }
     if(convex && sign_changes > 2)
       convex = false; // counted cyclically, a simple convex polygon has at most 2 (+1 at wrap)
-    if(n[axis] == 0)
+    if(projection.degenerate())
       convex = true; // degenerate (all corners collinear): nothing better than a fan
 
     if(!convex)
@@ -984,7 +835,11 @@ private:
       ++result_.number_of_non_convex_polygons;
       if(options_.non_convex_rule == Soup_topology::IO::Non_convex_polygon_rule::EAR_CLIPPING)
       {
-        ear_clip(poly, k, base, flip, turn);
+        const std::size_t left = clipper_.clip(uv_, k, [&](std::size_t a, std::size_t b, std::size_t c) {
+          push_triangle(at(a), at(b), at(c), flip);
+        });
+        if(left != 0)
+          ++result_.number_of_ear_clipping_failures; // no ear left: the rest was fanned
         return;
       }
     }
@@ -992,60 +847,6 @@ private:
       push_triangle(at(0), at(i), at(i + 1), flip);
   }
 
-  template <typename Turn>
-  void ear_clip(const std::int32_t* poly, std::size_t k, std::size_t base, bool flip,
-                const Turn& turn)
-  {
-    auto at = [&](std::size_t i) { return base + static_cast<std::size_t>(poly[i]); };
-    auto same = [&](std::size_t a, std::size_t b) {
-      return uv_[2 * a] == uv_[2 * b] && uv_[2 * a + 1] == uv_[2 * b + 1];
-    };
-    std::vector<std::size_t>& ring = ring_;
-    ring.resize(k);
-    for(std::size_t i = 0; i < k; ++i)
-      ring[i] = i;
-    std::size_t cursor = 0, misses = 0;
-    while(ring.size() > 3)
-    {
-      const std::size_t m = ring.size();
-      const std::size_t ia = (cursor + m - 1) % m, ib = cursor % m, ic = (cursor + 1) % m;
-      const std::size_t a = ring[ia], b = ring[ib], c = ring[ic];
-      bool ear = turn(a, b, c) > 0;
-      for(std::size_t j = 0; ear && j < m; ++j)
-      {
-        const std::size_t q = ring[j];
-        if(q == a || q == b || q == c || same(q, a) || same(q, b) || same(q, c))
-          continue;
-        if(turn(a, b, q) >= 0 && turn(b, c, q) >= 0 && turn(c, a, q) >= 0)
-          ear = false;
-      }
-      if(ear)
-      {
-        push_triangle(at(a), at(b), at(c), flip);
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(ib));
-        cursor = ib; // the next corner moved into this slot
-        misses = 0;
-      }
-      else
-      {
-        ++cursor;
-        if(++misses > m)
-        {
-          // no ear left (self-intersecting or degenerate rest): fan what remains
-          ++result_.number_of_ear_clipping_failures;
-          for(std::size_t i = 1; i + 1 < m; ++i)
-            push_triangle(at(ring[0]), at(ring[i]), at(ring[i + 1]), flip);
-          return;
-        }
-      }
-    }
-    push_triangle(at(ring[0]), at(ring[1]), at(ring[2]), flip);
-  }
-
-  const char* p_;
-  const char* end_;
-  const std::string& name_;
-  std::size_t line_ = 1;
   std::size_t depth_ = 0;
   const Soup_topology::IO::VRML_read_options& options_;
   Soup_topology::IO::VRML_read_result& result_;
@@ -1053,7 +854,10 @@ private:
   std::vector<Node> nodes_;
   std::unordered_map<std::string_view, std::size_t> defs_;
   std::vector<double> uv_;
-  std::vector<std::size_t> ring_;
+  Ear_clipper clipper_;
+  std::vector<std::size_t> mark_;  // per point of a Coordinate: 1 + the last IndexedFaceSet that named it
+  std::vector<std::size_t> local_; // per point of a Coordinate: its place among those appended
+  std::size_t instance_budget_ = 0, instances_ = 0, output_budget_ = 0, output_ = 0;
 };
 
 } // namespace VRML
