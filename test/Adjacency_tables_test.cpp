@@ -2,13 +2,16 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // The index representation and the adjacency tables: the patent's cube (Figures 1-5, 7-9, tables
-// (1)-(18)), the CGAL non-manifold inputs, property tests on real meshes, bad input, and the
-// `stats` command.
+// (1)-(18)), the CGAL non-manifold inputs, property tests on real meshes, bad input, the `stats`
+// command, hostile inputs (issue 21) checked against a brute-force computation and within time
+// bounds.
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
+#include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/soup_statistics.h>
 
+#include "bounded_run.h"
 #include "test_utilities.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -19,7 +22,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -595,6 +602,412 @@ TEST(CommandLine, BadFilesExitWithCode2AndAMessage)
   const auto [out, code] = soup_test::run_command(cli() + " frobnicate 2>&1");
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("unknown command"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 21: hostile inputs (many triangles on one edge, vertices of high degree) cost linear time,
+// and the tables are those of an obviously correct slow computation.
+
+using size_type = Tables::size_type;
+
+// The tables computed the slow way, from the definitions.
+struct Reference
+{
+  std::vector<std::array<size_type, 3>> neighbors;
+  std::vector<std::vector<size_type>> around;
+  std::vector<Tables::Edge> non_manifold_edges, inconsistent_edges;
+  std::vector<size_type> non_manifold_vertices, component;
+  std::size_t components = 0, border_edges = 0;
+};
+
+Reference brute_force(const std::vector<Tables::Triangle>& tris, std::size_t nv)
+{
+  const size_type n = static_cast<size_type>(tris.size());
+  auto has = [&](size_type t, size_type v) { return tris[t][0] == v || tris[t][1] == v || tris[t][2] == v; };
+  // All the triangles other than t containing edge i of t.
+  auto others = [&](size_type t, int i) {
+    std::vector<size_type> r;
+    const size_type a = tris[t][i], b = tris[t][(i + 1) % 3];
+    for(size_type u = 0; u < n; ++u) if(u != t && has(u, a) && has(u, b)) r.push_back(u);
+    return r;
+  };
+  Reference ref;
+  ref.neighbors.resize(n);
+  ref.around.resize(nv);
+  for(size_type t = 0; t < n; ++t)
+    for(int i = 0; i < 3; ++i) {
+      const std::vector<size_type> o = others(t, i);
+      ref.neighbors[t][i] = o.empty() ? Tables::border_edge : o.size() == 1 ? o[0] : Tables::non_manifold_edge;
+      if(o.empty()) ++ref.border_edges;
+      if(o.size() >= 2 && o[0] > t) ref.non_manifold_edges.push_back(Tables::Edge{t, i});
+      if(o.size() == 1 && o[0] > t) {
+        const size_type u = o[0], a = tris[t][i], b = tris[t][(i + 1) % 3];
+        for(int j = 0; j < 3; ++j)
+          if(tris[u][j] == a && tris[u][(j + 1) % 3] == b) ref.inconsistent_edges.push_back(Tables::Edge{t, i});
+      }
+      ref.around[tris[t][i]].push_back(t);
+    }
+  // Components: breadth-first search from each triangle not reached yet, in increasing order,
+  // across every pair of triangles with two common vertices.
+  auto common = [&](size_type t, size_type u) {
+    int c = 0;
+    for(size_type v : tris[t]) if(has(u, v)) ++c;
+    return c;
+  };
+  ref.component.assign(n, Tables::border_edge);
+  for(size_type seed = 0; seed < n; ++seed) {
+    if(ref.component[seed] != Tables::border_edge) continue;
+    const size_type id = static_cast<size_type>(ref.components++);
+    std::vector<size_type> queue = {seed};
+    ref.component[seed] = id;
+    for(std::size_t q = 0; q < queue.size(); ++q)
+      for(size_type u = 0; u < n; ++u)
+        if(ref.component[u] == Tables::border_edge && common(queue[q], u) >= 2) { ref.component[u] = id; queue.push_back(u); }
+  }
+  // Non-manifold vertices: the triangles of v, joined across the edges {v, w} of exactly two
+  // triangles, form more than one group.
+  std::map<std::pair<size_type, size_type>, std::size_t> on_edge;
+  for(const Tables::Triangle& t : tris)
+    for(int i = 0; i < 3; ++i) ++on_edge[std::minmax(t[i], t[(i + 1) % 3])];
+  for(size_type v = 0; v < nv; ++v) {
+    const std::vector<size_type>& tv = ref.around[v];
+    if(tv.size() < 2) continue;
+    std::vector<char> reached(tv.size(), 0);
+    std::vector<std::size_t> queue = {0};
+    reached[0] = 1;
+    for(std::size_t q = 0; q < queue.size(); ++q)
+      for(std::size_t y = 0; y < tv.size(); ++y)
+        for(size_type w : tris[tv[queue[q]]])
+          if(!reached[y] && w != v && has(tv[y], w) && on_edge[std::minmax(v, w)] == 2) { reached[y] = 1; queue.push_back(y); }
+    if(queue.size() != tv.size()) ref.non_manifold_vertices.push_back(v);
+  }
+  return ref;
+}
+
+void expect_tables_match_reference(const Tables& adj, const std::vector<Tables::Triangle>& tris, std::size_t nv)
+{
+  ASSERT_EQ(adj.triangles(), tris);
+  ASSERT_EQ(adj.number_of_vertices(), nv);
+  const Reference ref = brute_force(tris, nv);
+  for(size_type t = 0; t < tris.size(); ++t)
+    for(int i = 0; i < 3; ++i) {
+      ASSERT_EQ(adj.neighbor(t, i), ref.neighbors[t][i]) << "triangle " << t << ", edge " << i;
+      std::vector<size_type> around_edge, expected;
+      adj.triangles_around_edge(t, i, std::back_inserter(around_edge));
+      for(size_type u : ref.around[tris[t][i]])
+        if(u != t && adj.local_index(u, tris[t][(i + 1) % 3]) >= 0) expected.push_back(u);
+      ASSERT_EQ(around_edge, expected) << "triangle " << t << ", edge " << i;
+    }
+  for(size_type v = 0; v < nv; ++v) ASSERT_EQ(around(adj, v), ref.around[v]) << "vertex " << v;
+  EXPECT_EQ(adj.non_manifold_edges(), ref.non_manifold_edges);
+  EXPECT_EQ(adj.inconsistently_oriented_edges(), ref.inconsistent_edges);
+  EXPECT_EQ(adj.non_manifold_vertices(), ref.non_manifold_vertices);
+  EXPECT_EQ(adj.number_of_border_edges(), ref.border_edges);
+  EXPECT_EQ(adj.is_closed(), ref.border_edges == 0);
+  std::vector<size_type> component;
+  EXPECT_EQ(adj.number_of_connected_components(&component), ref.components);
+  EXPECT_EQ(component, ref.component);
+}
+
+TEST(AdjacencyTables, Issue21BruteForceCrossCheckWithLocalUpdates)
+{
+  std::mt19937 rng(2126);
+  auto pick = [&](std::size_t n) { return static_cast<size_type>(rng() % n); };
+  for(int soup = 0; soup < 250; ++soup) {
+    SCOPED_TRACE("soup " + std::to_string(soup));
+    // Few vertices, many triangles, copies in every rotation and direction: many non-manifold
+    // edges and repeated triangles. Six spare vertices are there for the splits.
+    const std::size_t used = 4 + rng() % 5, nv = used + 6;
+    std::vector<Tables::Triangle> tris;
+    const std::size_t count = 1 + rng() % 30;
+    while(tris.size() < count) {
+      if(!tris.empty() && rng() % 3 == 0) {
+        Tables::Triangle t = tris[pick(tris.size())];
+        std::rotate(t.begin(), t.begin() + rng() % 3, t.end());
+        if(rng() % 2) std::swap(t[0], t[1]);
+        tris.push_back(t);
+        continue;
+      }
+      const Tables::Triangle t = {pick(used), pick(used), pick(used)};
+      if(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) tris.push_back(t);
+    }
+    Tables adj(tris, nv);
+    expect_tables_match_reference(adj, tris, nv);
+    if(HasFatalFailure()) return;
+    for(int step = 0; step < 12; ++step) {
+      if(rng() % 5 < 3) {
+        const size_type t = pick(tris.size());
+        const int i = static_cast<int>(rng() % 3);
+        const size_type v = pick(nv);
+        if(adj.local_index(t, v) >= 0) {
+          EXPECT_THROW(adj.split_triangle(t, i, v), ST::Invalid_input);
+        } else {
+          Tables::Triangle created = tris[t];
+          created[static_cast<std::size_t>(i)] = v;
+          tris[t][static_cast<std::size_t>((i + 1) % 3)] = v;
+          tris.push_back(created);
+          EXPECT_EQ(adj.split_triangle(t, i, v), tris.size() - 1);
+        }
+      } else {
+        const size_type duplicate = pick(nv), original = pick(nv);
+        bool together = false;
+        for(const Tables::Triangle& t : tris)
+          together |= duplicate != original && std::count(t.begin(), t.end(), duplicate) + std::count(t.begin(), t.end(), original) == 2;
+        if(together) {
+          EXPECT_THROW(adj.replace_vertex(duplicate, original), ST::Invalid_input);
+        } else {
+          for(Tables::Triangle& t : tris) for(size_type& v : t) if(v == duplicate) v = original;
+          adj.replace_vertex(duplicate, original);
+        }
+      }
+      SCOPED_TRACE("after update " + std::to_string(step));
+      expect_tables_match_reference(adj, tris, nv);
+      if(HasFatalFailure()) return;
+    }
+  }
+}
+
+// Runs `work` in a child process limited to `cpu_seconds` of processor time (ten times more in
+// sanitizer builds); returns "" if it finished and returned true, else what happened.
+std::string run_with_cpu_bound(double cpu_seconds, const std::function<bool()>& work)
+{
+  const pid_t pid = fork();
+  if(pid < 0) return "fork failed";
+  if(pid == 0) {
+    const double bound = soup_test::sanitized_build ? 10 * cpu_seconds : cpu_seconds;
+    rlimit limit;
+    limit.rlim_cur = static_cast<rlim_t>(std::ceil(bound));
+    limit.rlim_max = limit.rlim_cur + 1;
+    setrlimit(RLIMIT_CPU, &limit);
+    bool ok = false;
+    try { ok = work(); } catch(...) { ok = false; }
+    _exit(ok ? 0 : 1);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if(WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status)) + " (processor time bound exceeded)";
+  if(!WIFEXITED(status) || WEXITSTATUS(status) != 0) return "wrong result";
+  return "";
+}
+
+bool same(std::size_t value, std::size_t expected, const char* what)
+{
+  if(value != expected) std::fprintf(stderr, "%s: %zu, expected %zu\n", what, value, expected);
+  return value == expected;
+}
+
+TEST(AdjacencyTables, Issue21RepeatedTriangle)
+{
+  // One triangle 100,000 times: every pair of copies shares three edges.
+  EXPECT_EQ(run_with_cpu_bound(2, [] {
+    const std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+    const std::vector<Triangle> triangles(100000, Triangle{0, 1, 2});
+    const Tables adj(triangles, points.size());
+    const ST::Soup_statistics s = ST::compute_statistics(points, adj);
+    std::vector<size_type> others;
+    adj.triangles_around_edge(0, 0, std::back_inserter(others));
+    return same(s.triangles, 100000, "triangles") && same(s.border_edges, 0, "border edges") &&
+           same(s.non_manifold_edges, 3, "non-manifold edges") &&
+           same(s.non_manifold_vertices, 3, "non-manifold vertices") &&
+           same(s.inconsistent_edges, 0, "inconsistent edges") && same(s.components, 1, "components") &&
+           same(others.size(), 99999, "triangles around edge") && s.closed;
+  }), "");
+}
+
+TEST(AdjacencyTables, Issue21ManyTrianglesOnOneEdge)
+{
+  // 20,000 triangles on the edge {0, 1}; then 2,000 of them are split on that edge, each at its
+  // own new vertex (the edge is resolved again at every split).
+  EXPECT_EQ(run_with_cpu_bound(2, [] {
+    const size_type n = 20000, splits = 2000;
+    std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0)};
+    std::vector<Triangle> triangles;
+    for(size_type k = 0; k < n; ++k) {
+      points.push_back(Point(0.5, k + 1, k % 7));
+      triangles.push_back({0, 1, 2 + std::size_t(k)});
+    }
+    for(size_type k = 0; k < splits; ++k) points.push_back(Point(0.5 + (k + 1) * 1e-6, 0, 0));
+    Tables adj(triangles, points.size());
+    ST::Soup_statistics s = ST::compute_statistics(points, adj);
+    bool ok = same(s.non_manifold_edges, 1, "non-manifold edges") && same(s.border_edges, 2 * n, "border edges") &&
+              same(s.non_manifold_vertices, 2, "non-manifold vertices") && same(s.components, 1, "components");
+    for(size_type k = 0; k < splits; ++k) adj.split_triangle(k, 0, 2 + n + k);
+    s = ST::compute_statistics(points, adj);
+    // Each split pair hangs on nothing but itself: a component of its own.
+    return ok && same(s.triangles, n + splits, "triangles") && same(s.non_manifold_edges, 1, "non-manifold edges") &&
+           same(s.border_edges, 2 * n + 2 * splits, "border edges") && same(s.components, 1 + splits, "components") &&
+           same(adj.number_of_connected_components(), 1 + splits, "components");
+  }), "");
+}
+
+TEST(AdjacencyTables, Issue21FanAroundOneVertex)
+{
+  // A closed fan of 100,000 triangles around vertex 0, built in two halves around 0 and around a
+  // copy of it that is welded back; then 1,000 single triangles welded onto 0 and 10,000 splits
+  // of rim edges (0 is a vertex of every split triangle).
+  EXPECT_EQ(run_with_cpu_bound(2, [] {
+    const size_type n = 100000, copies = 1000, splits = 10000;
+    const size_type copy = n + 1, extra = n + 2;
+    std::vector<Point> points(extra + 3 * copies + splits, Point(0, 0, 0));
+    std::vector<Triangle> triangles;
+    for(size_type k = 0; k < n; ++k)
+      triangles.push_back({k < n / 2 ? 0 : copy, 1 + std::size_t(k), 1 + std::size_t((k + 1) % n)});
+    for(size_type j = 0; j < copies; ++j)
+      triangles.push_back({extra + 3 * std::size_t(j), extra + 3 * std::size_t(j) + 1, extra + 3 * std::size_t(j) + 2});
+    Tables adj(triangles, points.size());
+    bool ok = same(adj.non_manifold_vertices().size(), 2, "non-manifold vertices (two open fans)");
+    adj.replace_vertex(copy, 0);
+    for(size_type j = 0; j < copies; ++j) adj.replace_vertex(extra + 3 * j, 0);
+    ok = ok && same(adj.degree(0), n + copies, "degree") && same(adj.number_of_border_edges(), n + 3 * copies, "border edges") &&
+         same(adj.non_manifold_vertices().size(), 1, "non-manifold vertices (the fan and the welded triangles)") &&
+         same(adj.number_of_connected_components(), 1 + copies, "components");
+    for(size_type k = 0; k < splits; ++k) adj.split_triangle(10 * k, 1, extra + 3 * copies + k);
+    const ST::Soup_statistics s = ST::compute_statistics(points, adj);
+    return ok && same(s.triangles, n + copies + splits, "triangles") &&
+           same(s.border_edges, n + 3 * copies + splits, "border edges") && same(s.non_manifold_edges, 0, "non-manifold edges") &&
+           same(s.non_manifold_vertices, 1, "non-manifold vertices") && same(s.components, 1 + copies, "components") &&
+           same(adj.degree(0), n + copies + splits, "degree");
+  }), "");
+}
+
+// A triangle (a, b, apex) with `n` collinear points on its edge [a, b], and on the other side of
+// that edge a strip of 2 (n + 1) triangles through those points: T-junction splitting makes a fan
+// of n + 1 triangles around the apex.
+void t_junction_strip(std::size_t n, std::vector<Point>& points, std::vector<Triangle>& triangles)
+{
+  points = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0)};
+  triangles = {{0, 1, 2}};
+  std::vector<std::size_t> chain = {0};
+  for(std::size_t k = 1; k <= n; ++k) {
+    chain.push_back(points.size());
+    points.push_back(Point(double(k) / double(n + 1), 0, 0));
+  }
+  chain.push_back(1);
+  const std::size_t below = points.size();
+  for(std::size_t k = 0; k <= n + 1; ++k) points.push_back(Point(double(k) / double(n + 1), -0.01, 0));
+  for(std::size_t k = 0; k + 1 < chain.size(); ++k) {
+    triangles.push_back({chain[k + 1], chain[k], below + k});
+    triangles.push_back({chain[k + 1], below + k, below + k + 1});
+  }
+}
+
+TEST(AdjacencyTables, Issue21TJunctionsAlongOneEdge)
+{
+  // The splits that T-junction repair makes on this soup, in its order: along [a, b], each split
+  // continues in the new triangle. The apex gains a triangle at every split.
+  EXPECT_EQ(run_with_cpu_bound(2, [] {
+    const std::size_t n = 100000;
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    t_junction_strip(n, points, triangles);
+    Tables adj(triangles, points.size());
+    size_type t = 0;
+    for(size_type c = 3; c < 3 + n; ++c) t = adj.split_triangle(t, 0, c);
+    const ST::Soup_statistics s = ST::compute_statistics(points, adj);
+    return same(s.triangles, 3 * n + 3, "triangles") && same(s.border_edges, n + 5, "border edges") &&
+           same(s.non_manifold_edges, 0, "non-manifold edges") && same(s.non_manifold_vertices, 0, "non-manifold vertices") &&
+           same(s.inconsistent_edges, 0, "inconsistent edges") && same(s.components, 1, "components") &&
+           same(s.zero_area_triangles, 0, "zero-area triangles") && same(adj.degree(2), n + 1, "degree of the apex");
+  }), "");
+  // The whole repair. The bound is looser: most of the time goes to finding the T-junctions
+  // (exact predicates on collinear points), not to the tables.
+  EXPECT_EQ(run_with_cpu_bound(15, [] {
+    const std::size_t n = 100000;
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    t_junction_strip(n, points, triangles);
+    const ST::Reconstruction_report r =
+      ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(1e-9));
+    return same(r.t_junctions, n, "T-junctions") && same(r.split_triangles, n, "splits") &&
+           same(r.output_triangles, 3 * n + 3, "triangles") && same(r.border_edges_after, n + 5, "border edges") &&
+           same(r.components, 1, "components");
+  }), "");
+}
+
+TEST(CommandLine, Issue21HostileStatsWithinTwoSecondsAnd500MB)
+{
+  const std::string dir = soup_test::temporary_folder("issue21_stats");
+  struct Case { std::string name; long long triangles, border, non_manifold_edges, non_manifold_vertices, components; };
+  std::vector<Case> cases;
+  {
+    std::ofstream out(dir + "/repeated.off");
+    out << "OFF\n3 100000 0\n0 0 0\n1 0 0\n0 1 0\n";
+    for(int k = 0; k < 100000; ++k) out << "3 0 1 2\n";
+    cases.push_back({"repeated.off", 100000, 0, 3, 3, 1});
+  }
+  {
+    std::ofstream out(dir + "/one_edge.off");
+    out << "OFF\n20002 20000 0\n0 0 0\n1 0 0\n";
+    for(int k = 0; k < 20000; ++k) out << "0.5 " << k + 1 << " " << k % 7 << "\n";
+    for(int k = 0; k < 20000; ++k) out << "3 0 1 " << k + 2 << "\n";
+    cases.push_back({"one_edge.off", 20000, 40000, 1, 2, 1});
+  }
+  {
+    const int n = 100000;
+    std::ofstream out(dir + "/fan.off");
+    out.precision(17);
+    out << "OFF\n" << n + 1 << " " << n << " 0\n0 0 0\n";
+    for(int k = 0; k < n; ++k) out << std::cos(2 * CGAL_PI * k / n) << " " << std::sin(2 * CGAL_PI * k / n) << " 0\n";
+    for(int k = 0; k < n; ++k) out << "3 0 " << 1 + k << " " << 1 + (k + 1) % n << "\n";
+    cases.push_back({"fan.off", n, n, 0, 0, 1});
+  }
+  {
+    std::ofstream out(dir + "/face.obj");
+    out << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf";
+    for(int k = 0; k < 50000; ++k) out << " " << 1 + k % 4;
+    out << "\n";
+    cases.push_back({"face.obj", -1, 0, 5, 4, 1});
+  }
+  for(const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const soup_test::Bounded_run r = soup_test::run_bounded({cli(), "stats", dir + "/" + c.name, "--json"}, 2, 500);
+    ASSERT_TRUE(r.exited_normally()) << "signal " << r.signal << "\n" << r.err;
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    if(!soup_test::sanitized_build) { EXPECT_LT(r.cpu_seconds, 2.0); }
+    EXPECT_LT(r.peak_rss_mb, 500u);
+    if(c.triangles >= 0) { EXPECT_EQ(soup_test::json_integer(r.out, "triangles"), c.triangles); }
+    EXPECT_EQ(soup_test::json_integer(r.out, "border_edges"), c.border);
+    EXPECT_EQ(soup_test::json_integer(r.out, "non_manifold_edges"), c.non_manifold_edges);
+    EXPECT_EQ(soup_test::json_integer(r.out, "non_manifold_vertices"), c.non_manifold_vertices);
+    EXPECT_EQ(soup_test::json_integer(r.out, "components"), c.components);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 20: NaN coordinates are refused by name, and the caller's data is left as it was.
+
+TEST(BadInput, Issue20NaNCoordinatesAreRefused)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, nan, 0), Point(0, 0, 0)};
+  std::vector<Triangle> faces = {{0, 1, 2}, {3, 1, 2}};
+  const auto points_before = points;
+  const auto faces_before = faces;
+  try {
+    ST::merge_duplicate_points(points, faces);
+    FAIL() << "no exception";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("point 2"), std::string::npos) << e.what();
+  }
+  ASSERT_EQ(points.size(), points_before.size());
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(i != 2) { EXPECT_EQ(points[i], points_before[i]); }
+  EXPECT_TRUE(std::isnan(points[2].y()));
+  EXPECT_EQ(faces, faces_before);
+
+  const std::vector<std::array<Point, 3>> soup = {
+    {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)},
+    {Point(0, 0, 0), Point(1, 0, 0), Point(0, 0, std::numeric_limits<double>::infinity())}};
+  std::vector<Point> indexed_points = {Point(5, 5, 5)};
+  std::vector<Triangle> indexed = {{0, 0, 0}};
+  try {
+    ST::index_triangles(soup, indexed_points, indexed);
+    FAIL() << "no exception";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1, corner 2"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(indexed_points, (std::vector<Point>{Point(5, 5, 5)}));
+  EXPECT_EQ(indexed, (std::vector<Triangle>{{0, 0, 0}}));
 }
 
 } // namespace

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -38,12 +39,18 @@ namespace Soup_topology {
 /// **Vertex neighbours.** `triangles_around_vertex(v)` lists the triangles that contain `v` in
 /// increasing order (stored as compressed rows with room to grow, so local updates are cheap).
 ///
-/// **Construction** is linear in the size of the soup: one pass fills the vertex table, then each
-/// edge is resolved by scanning the (short) triangle list of its first vertex.
+/// **Construction** is linear in the size of the soup, whatever the soup: one pass fills the
+/// vertex table, then the edges of each vertex `a` are bucketed by their other end `b > a`, so
+/// every edge is met with all its triangles at once (a triangle repeated many times, or many
+/// triangles on one edge, cost no more than as many separate triangles). The global queries
+/// (`non_manifold_edges()`, `non_manifold_vertices()`, `number_of_connected_components()`, ...)
+/// are linear too.
 ///
 /// **Local updates.** `replace_vertex()` (welding, the patent's rules (a)-(c)) and
 /// `split_triangle()` (T-junction repair, rule tables (15) and (17)) change the tables locally:
-/// only the entries around the touched vertices are recomputed.
+/// only the edges whose set of triangles changes are resolved again, each once, by scanning the
+/// shorter of the triangle lists of its two end vertices. A vertex of high degree is therefore
+/// not scanned by an update unless both ends of a changed edge have high degree.
 ///
 /// Indices are stored on 32 bits; a soup must have fewer than 2^32 - 2 points and triangles.
 class Adjacency_tables
@@ -153,12 +160,14 @@ public:
     return -1;
   }
   /// writes to `out` every triangle other than `t` that contains edge `i` of `t`, in increasing order.
+  /// Time linear in the smaller degree of the two end vertices.
   template <class OutputIterator>
   OutputIterator triangles_around_edge(size_type t, int i, OutputIterator out) const
   {
     const size_type a = vertex(t, i), b = vertex(t, (i + 1) % 3);
-    for(size_type u : triangles_around_vertex(a))
-      if(u != t && local_index(u, b) >= 0) *out++ = u;
+    const size_type s = degree(a) <= degree(b) ? a : b, o = (s == a) ? b : a;
+    for(size_type u : triangles_around_vertex(s))
+      if(u != t && local_index(u, o) >= 0) *out++ = u;
     return out;
   }
   /// all border (unconnected) edges, ordered by triangle then local index.
@@ -166,19 +175,16 @@ public:
   /// the number of border edges.
   std::size_t number_of_border_edges() const
   { return static_cast<std::size_t>(std::count(neighbors_.begin(), neighbors_.end(), border_edge)); }
-  /// one `Edge` per distinct non-manifold edge: the one of its smallest triangle.
+  /// one `Edge` per distinct non-manifold edge: the one of its smallest triangle, ordered by
+  /// triangle then local index. Linear time.
   std::vector<Edge> non_manifold_edges() const
   {
     std::vector<Edge> result;
-    for(const Edge& e : edges_with(non_manifold_edge)) {
-      const size_type a = vertex(e.triangle, e.index), b = vertex(e.triangle, (e.index + 1) % 3);
-      bool smallest = true;
-      for(size_type u : triangles_around_vertex(a)) {
-        if(u >= e.triangle) break;
-        if(local_index(u, b) >= 0) { smallest = false; break; }
-      }
-      if(smallest) result.push_back(e);
-    }
+    if(std::find(neighbors_.begin(), neighbors_.end(), non_manifold_edge) == neighbors_.end()) return result;
+    for_each_edge([&](size_type, size_type, const Edge* first, const Edge* last) {
+      if(last - first >= 3) result.push_back(*first);
+    });
+    std::sort(result.begin(), result.end());
     return result;
   }
   /// the edges whose two triangles traverse them in the same direction (inconsistent
@@ -217,30 +223,44 @@ public:
   /// the number of edge-connected components of the triangles (triangles sharing an edge, manifold
   /// or not, are connected). If `component` is not null it receives, for every triangle, the id
   /// of its component; ids are numbered by their smallest triangle, from 0.
+  /// Linear time (union-find; the triangles of a non-manifold edge are joined to its smallest one).
   std::size_t number_of_connected_components(std::vector<size_type>* component = nullptr) const
   {
-    std::vector<size_type> cc(triangles_.size(), border_edge);
-    std::vector<size_type> stack;
-    std::vector<size_type> around_edge;
-    size_type count = 0;
-    for(size_type seed = 0; seed < triangles_.size(); ++seed) {
-      if(cc[seed] != border_edge) continue;
-      cc[seed] = count;
-      stack.push_back(seed);
-      while(!stack.empty()) {
-        const size_type t = stack.back();
-        stack.pop_back();
-        for(int i = 0; i < 3; ++i) {
-          const size_type u = neighbor(t, i);
-          if(u == border_edge) continue;
-          around_edge.clear();
-          if(u == non_manifold_edge) triangles_around_edge(t, i, std::back_inserter(around_edge));
-          else around_edge.push_back(u);
-          for(size_type w : around_edge)
-            if(cc[w] == border_edge) { cc[w] = count; stack.push_back(w); }
-        }
+    const std::size_t n = triangles_.size();
+    std::vector<size_type> parent(n);
+    std::iota(parent.begin(), parent.end(), size_type(0));
+    auto find = [&](size_type x) {
+      size_type root = x;
+      while(parent[root] != root) root = parent[root];
+      while(parent[x] != root) { const size_type next = parent[x]; parent[x] = root; x = next; }
+      return root;
+    };
+    // The root of a set is its smallest triangle (with path compression the trees stay shallow).
+    auto unite = [&](size_type x, size_type y) {
+      x = find(x);
+      y = find(y);
+      if(x < y) parent[y] = x;
+      else if(y < x) parent[x] = y;
+    };
+    bool non_manifold = false;
+    for(size_type t = 0; t < n; ++t)
+      for(int i = 0; i < 3; ++i) {
+        const size_type u = neighbor(t, i);
+        if(u == non_manifold_edge) non_manifold = true;
+        else if(u != border_edge && u > t) unite(t, u);
       }
-      ++count;
+    if(non_manifold)
+      for_each_edge([&](size_type, size_type, const Edge* first, const Edge* last) {
+        if(last - first < 3) return;
+        for(const Edge* e = first + 1; e != last; ++e) unite(first->triangle, e->triangle);
+      });
+    // Ids in the order of the smallest triangle of each component.
+    std::vector<size_type> cc(n, border_edge);
+    size_type count = 0;
+    for(size_type t = 0; t < n; ++t) {
+      const size_type root = find(t);
+      if(cc[root] == border_edge) cc[root] = count++;
+      cc[t] = cc[root];
     }
     if(component != nullptr) component->swap(cc);
     return count;
@@ -252,6 +272,9 @@ public:
   /// replaces every reference to vertex `duplicate` by `original` (the patent's rules (a)-(c)):
   /// the triangle table is rewritten, the triangles of `duplicate` join those of `original` and
   /// the edge neighbours around `original` are recomputed. `duplicate` is left isolated.
+  /// Only the edges `{original, w}`, `w` a neighbour of `duplicate`, are resolved again; the
+  /// triangle lists are merged in time linear in the two degrees (constant time per moved
+  /// triangle when they all come after those of `original`, as in a weld of later copies).
   /// \throws Invalid_input if a triangle contains both vertices (it would degenerate); nothing is
   ///         changed then.
   void replace_vertex(size_type duplicate, size_type original)
@@ -263,16 +286,32 @@ public:
       if(local_index(t, original) >= 0)
         throw Invalid_input("replace_vertex: triangle " + std::to_string(t) + " contains both vertex " +
                             std::to_string(duplicate) + " and vertex " + std::to_string(original));
-    const Id_range moved = triangles_around_vertex(duplicate);
-    for(size_type t : moved)
-      triangles_[t][static_cast<std::size_t>(local_index(t, duplicate))] = original;
-    // Merge the two sorted lists into the original's entry.
-    merge_buffer_.clear();
+    const Id_range moved_range = triangles_around_vertex(duplicate);
+    const std::vector<size_type> moved(moved_range.begin(), moved_range.end());
+    // The other ends of the edges that change: {duplicate, w} becomes {original, w}.
+    std::vector<size_type> ends;
+    ends.reserve(2 * moved.size());
+    for(size_type t : moved) {
+      const int k = local_index(t, duplicate);
+      ends.push_back(vertex(t, (k + 1) % 3));
+      ends.push_back(vertex(t, (k + 2) % 3));
+      triangles_[t][static_cast<std::size_t>(k)] = original;
+    }
+    // Merge the two sorted lists into the original's entry (appending when the moved triangles
+    // all come after the original's).
     const Id_range kept = triangles_around_vertex(original);
-    std::merge(kept.begin(), kept.end(), moved.begin(), moved.end(), std::back_inserter(merge_buffer_));
-    assign_list(original, merge_buffer_);
+    if(kept.empty() || moved.empty() || kept[kept.size() - 1] < moved.front()) {
+      for(size_type t : moved) append_to_list(original, t);
+    } else {
+      merge_buffer_.clear();
+      std::merge(kept.begin(), kept.end(), moved.begin(), moved.end(), std::back_inserter(merge_buffer_));
+      assign_list(original, merge_buffer_);
+    }
     vertex_size_[duplicate] = 0;
-    recompute_edges_around(original);
+    // Only the edges {original, w} gain triangles; the edges opposite the moved vertex keep theirs.
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    for(size_type w : ends) resolve_edge(original, w);
   }
 
   /// splits triangle `t` at vertex `v_new` lying on its edge `i` (rule table (15)): `t` keeps its
@@ -293,6 +332,8 @@ public:
     const std::size_t si = static_cast<std::size_t>(i);
     const Triangle old = triangles_[t];
     const size_type vi = old[si], vj = old[(si + 1) % 3], vk = old[(si + 2) % 3];
+    // The neighbours of t across (v_i, v_{i+1}) and (v_{i+1}, v_{i+2}) before the split.
+    const size_type across_ij = neighbor(t, i), across_jk = neighbor(t, (i + 1) % 3);
     Triangle created = old;
     created[si] = v_new;
     triangles_[t][(si + 1) % 3] = v_new;
@@ -300,15 +341,24 @@ public:
     triangles_.push_back(created);
     neighbors_.insert(neighbors_.end(), {border_edge, border_edge, border_edge});
     // Rule table (17): v_i keeps t; v_{i+1}: t -> t_new; v_{i+2}: + t_new; v_new: + t, + t_new.
-    replace_in_list(vj, t, t_new);
-    insert_in_list(vk, t_new);
+    // t_new is the largest triangle: it goes at the end of the sorted lists.
+    remove_from_list(vj, t);
+    append_to_list(vj, t_new);
+    append_to_list(vk, t_new);
     insert_in_list(v_new, t);
-    insert_in_list(v_new, t_new);
-    // Edge neighbours: everything incident to the four vertices involved.
-    recompute_edges_around(vi);
-    recompute_edges_around(vj);
-    recompute_edges_around(vk);
-    recompute_edges_around(v_new);
+    append_to_list(v_new, t_new);
+    // Edge neighbours. (v_{i+2}, v_i) keeps its triangles, and its local index in t.
+    // (v_{i+1}, v_{i+2}) moves from t to t_new at the same local index: its other triangles only
+    // need their entry for t changed.
+    set_neighbor(t_new, (i + 1) % 3, across_jk);
+    if(across_jk < non_manifold_edge) set_neighbor(across_jk, edge_index(across_jk, vj, vk), t_new);
+    // (v_i, v_{i+1}) loses t.
+    if(across_ij == non_manifold_edge) resolve_edge(vi, vj);
+    else if(across_ij != border_edge) set_neighbor(across_ij, edge_index(across_ij, vi, vj), border_edge);
+    // The three edges of v_new.
+    resolve_edge(vi, v_new);
+    resolve_edge(v_new, vk);
+    resolve_edge(v_new, vj);
     return t_new;
   }
   /// @}
@@ -366,6 +416,57 @@ private:
     return result;
   }
 
+  void set_neighbor(size_type t, int i, size_type value) { neighbors_[3 * std::size_t(t) + std::size_t(i)] = value; }
+
+  // Calls f(a, b, first, last) once for every distinct edge {a, b} (a < b) of the triangles, with
+  // [first, last) its copies (triangle, local index) in increasing triangle order. The edges of
+  // each vertex a are bucketed by their other end b > a (two passes over the triangles of a:
+  // count, then place), so the enumeration is linear in the size of the soup however many
+  // triangles share an edge.
+  template <class F>
+  void for_each_edge(F&& f) const
+  {
+    const std::size_t nv = number_of_vertices();
+    std::vector<size_type> mark(nv, 0);   // mark[b] == a + 1: b has a bucket in the pass of a
+    std::vector<size_type> slot(nv);      // the bucket of b, valid when marked
+    std::vector<size_type> ends, count, cursor;
+    std::vector<Edge> bucket;
+    for(size_type a = 0; a < nv; ++a) {
+      const Id_range around = triangles_around_vertex(a);
+      if(around.empty()) continue;
+      ends.clear();
+      count.clear();
+      for(size_type t : around) {
+        const int ia = local_index(t, a);
+        for(const size_type b : {vertex(t, (ia + 1) % 3), vertex(t, (ia + 2) % 3)}) {
+          if(b < a) continue;
+          if(mark[b] != a + 1) {
+            mark[b] = a + 1;
+            slot[b] = static_cast<size_type>(ends.size());
+            ends.push_back(b);
+            count.push_back(0);
+          }
+          ++count[slot[b]];
+        }
+      }
+      cursor.resize(ends.size());
+      std::size_t total = 0;
+      for(std::size_t k = 0; k < ends.size(); ++k) { cursor[k] = static_cast<size_type>(total); total += count[k]; }
+      bucket.resize(total);
+      for(size_type t : around) {
+        const int ia = local_index(t, a);
+        const size_type next = vertex(t, (ia + 1) % 3), previous = vertex(t, (ia + 2) % 3);
+        if(next > a) bucket[cursor[slot[next]]++] = Edge{t, ia};
+        if(previous > a) bucket[cursor[slot[previous]]++] = Edge{t, (ia + 2) % 3};
+      }
+      const Edge* first = bucket.data();
+      for(std::size_t k = 0; k < ends.size(); ++k) {
+        f(a, ends[k], first, first + count[k]);
+        first += count[k];
+      }
+    }
+  }
+
   void build(std::size_t number_of_points)
   {
     const std::size_t nv = number_of_points;
@@ -385,70 +486,90 @@ private:
     for(size_type t = 0; t < triangles_.size(); ++t)
       for(size_type v : triangles_[t]) ids_[vertex_begin_[v] + vertex_size_[v]++] = t;
     neighbors_.assign(3 * triangles_.size(), border_edge);
-    std::vector<size_type> group;
-    for(size_type t = 0; t < triangles_.size(); ++t)
-      for(int i = 0; i < 3; ++i)
-        if(neighbors_[3 * std::size_t(t) + std::size_t(i)] == border_edge) resolve_edge(t, i, group);
+    for_each_edge([this](size_type, size_type, const Edge* first, const Edge* last) { set_group(first, last); });
   }
 
-  // Finds every triangle containing edge i of t and writes the neighbour entries of all of them.
-  void resolve_edge(size_type t, int i, std::vector<size_type>& group)
+  // Writes the neighbour entries of [first, last), all the copies of one edge.
+  void set_group(const Edge* first, const Edge* last)
   {
-    const size_type a = vertex(t, i), b = vertex(t, (i + 1) % 3);
-    // Scan the shorter of the two vertex lists.
-    const size_type s = degree(a) <= degree(b) ? a : b, o = (s == a) ? b : a;
-    group.clear();
-    for(size_type u : triangles_around_vertex(s))
-      if(local_index(u, o) >= 0) group.push_back(u);
-    if(group.size() == 1) {
-      neighbors_[3 * std::size_t(t) + std::size_t(i)] = border_edge;
-    } else if(group.size() == 2) {
-      const size_type u = group[0] == t ? group[1] : group[0];
-      neighbors_[3 * std::size_t(t) + std::size_t(i)] = u;
-      neighbors_[3 * std::size_t(u) + std::size_t(edge_index(u, a, b))] = t;
+    const std::ptrdiff_t n = last - first;
+    if(n == 1) {
+      set_neighbor(first->triangle, first->index, border_edge);
+    } else if(n == 2) {
+      set_neighbor(first[0].triangle, first[0].index, first[1].triangle);
+      set_neighbor(first[1].triangle, first[1].index, first[0].triangle);
     } else {
-      for(size_type u : group) neighbors_[3 * std::size_t(u) + std::size_t(edge_index(u, a, b))] = non_manifold_edge;
+      for(const Edge* e = first; e != last; ++e) set_neighbor(e->triangle, e->index, non_manifold_edge);
     }
   }
 
-  void recompute_edges_around(size_type v)
+  // Finds every triangle containing the edge {a, b}, by scanning the shorter of the two vertex
+  // lists, and writes the neighbour entries of all of them.
+  void resolve_edge(size_type a, size_type b)
   {
-    std::vector<size_type> group;
-    for(size_type t : triangles_around_vertex(v)) {
-      const int iv = local_index(t, v);
-      resolve_edge(t, iv, group);
-      resolve_edge(t, (iv + 2) % 3, group);
+    const size_type s = degree(a) <= degree(b) ? a : b;
+    group_.clear();
+    for(size_type u : triangles_around_vertex(s)) {
+      const int j = edge_index(u, a, b);
+      if(j >= 0) group_.push_back(Edge{u, j});
     }
+    if(!group_.empty()) set_group(group_.data(), group_.data() + group_.size());
   }
 
-  // Stores `list` (sorted) as the triangle list of v, moving it to the end of the pool if needed.
+  // Gives the list of v room for at least `capacity` entries; a list that outgrows its room moves
+  // to the end of the pool with twice the room (amortised constant time per insertion).
+  void reserve_list(size_type v, std::size_t capacity)
+  {
+    if(capacity <= vertex_capacity_[v]) return;
+    capacity = std::max<std::size_t>(capacity, std::max<std::size_t>(2 * std::size_t(vertex_capacity_[v]), 4));
+    const std::size_t old_begin = vertex_begin_[v], new_begin = ids_.size();
+    ids_.resize(new_begin + capacity, border_edge);
+    std::copy(ids_.begin() + static_cast<std::ptrdiff_t>(old_begin),
+              ids_.begin() + static_cast<std::ptrdiff_t>(old_begin + vertex_size_[v]),
+              ids_.begin() + static_cast<std::ptrdiff_t>(new_begin));
+    vertex_begin_[v] = new_begin;
+    vertex_capacity_[v] = static_cast<size_type>(capacity);
+  }
+
+  // Stores `list` (sorted) as the triangle list of v.
   void assign_list(size_type v, const std::vector<size_type>& list)
   {
     if(list.size() > vertex_capacity_[v]) {
-      const std::size_t capacity = std::max<std::size_t>(2 * list.size(), 4);
-      vertex_begin_[v] = ids_.size();
-      vertex_capacity_[v] = static_cast<size_type>(capacity);
-      ids_.resize(ids_.size() + capacity, border_edge);
+      vertex_size_[v] = 0; // the old entries are overwritten: nothing to move
+      reserve_list(v, 2 * list.size());
     }
     std::copy(list.begin(), list.end(), ids_.begin() + static_cast<std::ptrdiff_t>(vertex_begin_[v]));
     vertex_size_[v] = static_cast<size_type>(list.size());
   }
 
-  void insert_in_list(size_type v, size_type t)
+  // Appends t, larger than every triangle of v, to the list of v.
+  void append_to_list(size_type v, size_type t)
   {
-    const Id_range r = triangles_around_vertex(v);
-    merge_buffer_.assign(r.begin(), r.end());
-    merge_buffer_.insert(std::upper_bound(merge_buffer_.begin(), merge_buffer_.end(), t), t);
-    assign_list(v, merge_buffer_);
+    reserve_list(v, std::size_t(vertex_size_[v]) + 1);
+    ids_[vertex_begin_[v] + vertex_size_[v]++] = t;
   }
 
-  void replace_in_list(size_type v, size_type old_t, size_type new_t)
+  // Inserts t at its place in the sorted list of v.
+  void insert_in_list(size_type v, size_type t)
   {
-    const Id_range r = triangles_around_vertex(v);
-    merge_buffer_.clear();
-    for(size_type u : r) if(u != old_t) merge_buffer_.push_back(u);
-    merge_buffer_.insert(std::upper_bound(merge_buffer_.begin(), merge_buffer_.end(), new_t), new_t);
-    assign_list(v, merge_buffer_);
+    reserve_list(v, std::size_t(vertex_size_[v]) + 1);
+    size_type* b = ids_.data() + vertex_begin_[v];
+    size_type* e = b + vertex_size_[v];
+    size_type* p = std::upper_bound(b, e, t);
+    std::copy_backward(p, e, e + 1);
+    *p = t;
+    ++vertex_size_[v];
+  }
+
+  // Removes t from the sorted list of v.
+  void remove_from_list(size_type v, size_type t)
+  {
+    size_type* b = ids_.data() + vertex_begin_[v];
+    size_type* e = b + vertex_size_[v];
+    size_type* p = std::lower_bound(b, e, t);
+    if(p == e || *p != t) return;
+    std::copy(p + 1, e, p);
+    --vertex_size_[v];
   }
 
   std::vector<Triangle> triangles_;
@@ -460,7 +581,9 @@ private:
   std::vector<size_type> ids_;
   // Edge table: neighbors_[3 t + i] is the neighbour of t across its edge i.
   std::vector<size_type> neighbors_;
+  // Scratch space of the local updates.
   std::vector<size_type> merge_buffer_;
+  std::vector<Edge> group_;
 };
 
 } // namespace Soup_topology

@@ -52,7 +52,9 @@ struct Index_report
 /// \param triangles the input triangles (not modified)
 /// \param points receives the distinct points (cleared first)
 /// \param faces receives the triangles (cleared first)
-/// \throws Invalid_input if an element of `triangles` does not have 3 points.
+/// \throws Invalid_input if an element of `triangles` does not have 3 points, or if a corner has a
+///         NaN or infinite coordinate (the message names the triangle and the corner);
+///         `points` and `faces` are unchanged then.
 template <class TriangleRange, class PointRange, class FaceRange>
 Index_report index_triangles(const TriangleRange& triangles, PointRange& points, FaceRange& faces)
 {
@@ -88,6 +90,11 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
     }
   };
   const std::size_t corners = report.input_corners;
+  // A NaN equals nothing, not even itself: it would silently make a point of its own.
+  for(std::size_t i = 0; i < corners; ++i)
+    if(!internal::is_finite_point(corner_point(i)))
+      throw Invalid_input("triangle " + std::to_string(i / 3) + ", corner " + std::to_string(i % 3) +
+                          ": non-finite coordinate");
   const std::vector<std::uint32_t> first_of = internal::first_equal_points(corners, corner_point);
   // Number the distinct points in order of first appearance.
   std::vector<std::uint32_t> index_of(corners);
@@ -126,6 +133,10 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   }
   if(n >= std::size_t(0xFFFFFFF0u))
     throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
+  // A NaN equals nothing, not even itself: it would silently make a point of its own.
+  for(std::size_t i = 0; i < n; ++i)
+    if(!is_finite_point(points[i]))
+      throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate");
   const std::vector<std::uint32_t> first_of =
     first_equal_points(n, [&](std::size_t i) -> const Point& { return points[i]; });
   std::vector<std::size_t> new_index(n);
@@ -157,7 +168,8 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
 /// \tparam PointRange a `std::vector`-like container of `Point_3`
 /// \tparam FaceRange a random-access range of faces, each a range of vertex indices
 /// \returns the number of points removed.
-/// \throws Invalid_input if an index is out of range (nothing is changed then).
+/// \throws Invalid_input if an index is out of range, or if a point has a NaN or infinite
+///         coordinate (the message names it); nothing is changed then.
 template <class PointRange, class FaceRange>
 std::size_t merge_duplicate_points(PointRange& points, FaceRange& faces)
 {

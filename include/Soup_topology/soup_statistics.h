@@ -33,6 +33,8 @@ struct Soup_statistics
 /// \ingroup PkgSoupTopologyRef
 /// \brief computes `Soup_statistics` of the soup whose tables are `tables` and points `points`.
 /// Collinearity is decided by the kernel of the point type (exact with Epick and Epeck).
+/// Linear time in the size of the soup, however many triangles share an edge or a vertex: every
+/// count is one pass over the tables (see `Adjacency_tables`).
 template <class PointRange>
 Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tables& tables)
 {

@@ -15,6 +15,7 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
@@ -30,6 +31,18 @@ inline std::uint64_t double_bits(double x)
   std::uint64_t u;
   std::memcpy(&u, &x, sizeof u);
   return u;
+}
+
+/// `true` if the three coordinates of `p` are finite (always for exact number types, which hold
+/// neither NaN nor infinity).
+template <class Point>
+bool is_finite_point(const Point& p)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_floating_point<FT>::value)
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+  else
+    return true;
 }
 
 inline std::uint64_t mix_bits(std::uint64_t h)
