@@ -29,19 +29,21 @@
 namespace Soup_topology {
 namespace internal {
 
-/// throws `IO::Read_error` naming the line if the header of the PLY file `filename` has a
+/// the most bytes of a PLY header that are looked at: a header longer than this is not checked
+/// further (its end is then refused by CGAL's reader or read as data).
+constexpr std::size_t max_PLY_header_bytes = std::size_t(1) << 20;
+
+/// throws `IO::Read_error` naming the line if the header of the PLY file held in `[data, data + size)` has a
 /// `property` before any `element`, a vertex coordinate that is not a float or a double, or two
 /// properties of the same name in one element, a list count wider than 16 bits, or if its
 /// elements need more bytes than the
 /// file holds (each property of each item takes at least its size in a binary file, 2 bytes in
 /// an ASCII one).
-inline void check_PLY_header(const std::string& filename)
+inline void check_PLY_header(const char* data, std::size_t size, const std::string& filename)
 {
-  std::ifstream in(filename, std::ios::binary);
-  if(!in) throw IO::Read_error(filename + ": cannot open the file for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff file_size = in.tellg();
-  in.seekg(0, std::ios::beg);
+  // Only the header is looked at: at most the first line that says end_header, or the whole.
+  std::istringstream in(std::string(data, size < max_PLY_header_bytes ? size : max_PLY_header_bytes));
+  const double file_size = double(size);
   std::string line, element;
   std::set<std::string> names;
   std::size_t number = 0, count = 0, element_line = 0;
@@ -55,9 +57,9 @@ inline void check_PLY_header(const std::string& filename)
     if(bytes_per_item == 0)
       fail(element_line, "PLY element '" + element + "' announces " + std::to_string(count) + " items with no property");
     bytes_needed += double(count) * bytes_per_item;
-    if(bytes_needed > double(file_size))
+    if(bytes_needed > file_size)
       fail(element_line, "PLY element '" + element + "' announces " + std::to_string(count) +
-                           " items, more than the file of " + std::to_string(file_size) + " bytes can hold");
+                           " items, more than the file of " + std::to_string(size) + " bytes can hold");
   };
   const auto type_size = [](const std::string& t) -> double {
     if(t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
@@ -110,6 +112,7 @@ inline void check_PLY_header(const std::string& filename)
   }
   end_element(); // also without end_header: CGAL reads the elements then
 }
+
 
 } // namespace internal
 } // namespace Soup_topology
