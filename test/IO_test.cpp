@@ -1051,4 +1051,31 @@ TEST(ReadTriangleSoup, Issue20StreamAndMemoryReadLikeTheFile)
   EXPECT_THROW(ST::IO::read_triangle_soup(obj.data(), obj.size(), "dae", points, triangles), ST::IO::Read_error);
 }
 
+
+TEST(ReadTriangleSoup, Issue20PolygonsAreEarClipped)
+{
+  // A dart whose corner 3 is reflex: the fan from corner 0 covers twice the dart and flips a
+  // triangle; ear clipping gives two counterclockwise triangles of total area 1.
+  const std::string off = "OFF\n4 1 0\n0 0 0\n2 1 0\n0 2 0\n1 1 0\n4 0 1 2 3\n";
+  const std::string obj = "v 0 0 0\nv 2 1 0\nv 0 2 0\nv 1 1 0\nf 1 2 3 4\n";
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n2 1 0\n0 2 0\n1 1 0\n4 0 1 2 3\n";
+  for(const auto& [format, text] : {std::make_pair("off", off), std::make_pair("obj", obj), std::make_pair("ply", ply)}) {
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(text.data(), text.size(), format, points, triangles);
+    ASSERT_EQ(triangles.size(), 2u) << format;
+    EXPECT_EQ(r.non_convex_polygons, 1u);
+    EXPECT_EQ(r.ear_clipping_failures, 0u);
+    double area = 0;
+    for(const Triangle& t : triangles) {
+      const double z = CGAL::cross_product(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]).z();
+      EXPECT_GT(z, 0) << format;
+      area += z / 2;
+    }
+    EXPECT_DOUBLE_EQ(area, 1.0) << format;
+  }
+}
+
 } // namespace

@@ -16,6 +16,7 @@
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/internal/PLY_header.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/triangulate_polygon.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/property_map.h>
@@ -39,9 +40,12 @@ struct Soup_read_report
   std::string format;                     ///< "stl", "off", "obj", "ply", "wrl"
   std::size_t input_polygons = 0;         ///< faces or facets in the file
   std::size_t input_vertices = 0;         ///< vertices in the file (3 per facet for STL)
-  std::size_t input_triangles = 0;        ///< triangles after fan triangulation of polygons
+  std::size_t input_triangles = 0;        ///< triangles after the triangulation of polygons
   std::size_t skipped_polygons = 0;       ///< faces left out: fewer than 3 vertices, or not simple
   std::size_t non_simple_polygons = 0;    ///< of those, faces of more than 3 corners that repeat a vertex index
+  std::size_t non_convex_polygons = 0;    ///< polygons (OFF, OBJ, PLY) found non-convex, ear-clipped
+  /// of those, the polygons where ear clipping found no ear for some corners: those were fanned
+  std::size_t ear_clipping_failures = 0;
   std::size_t exact_duplicates = 0;       ///< vertices merged with an equal earlier one
   std::size_t collapsed_triangles = 0;    ///< triangles with two equal corners after the weld, left out
 };
@@ -96,14 +100,49 @@ inline void check_format(const std::string& format, const std::string& name)
     throw Read_error(name + ": unknown file extension '" + format + "' (expected .stl, .off, .obj, .ply or .wrl)");
 }
 
-/// fan-triangulates `polygons` into `triangles`, skipping (and counting in `report`) those of
-/// fewer than 3 corners and those of more than 3 that repeat a vertex (not simple polygons: the
-/// fan of `1 2 3 4 1 2 3 4 ...` would be a pile of copies of the same triangles). Linear in the
-/// number of corners.
-template <class Face>
-void triangulate_polygons(const std::vector<std::vector<std::size_t>>& polygons, std::size_t number_of_points,
+/// `true` if the polygon `poly` of more than 3 corners is convex in the plane of its Newell
+/// normal (the test of the VRML reader: no right turn, and the edge directions sweep around
+/// once), or degenerate (all corners collinear: nothing better than a fan). `uv` is scratch.
+template <class Point>
+bool is_convex_polygon(const std::vector<Point>& points, const std::vector<std::size_t>& poly, std::vector<double>& uv)
+{
+  const std::size_t k = poly.size();
+  const Soup_topology::internal::Polygon_projection projection = Soup_topology::internal::project_polygon(
+    k,
+    [&](std::size_t i) {
+      const Point& p = points[poly[i]];
+      return std::array<double, 3>{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    },
+    uv);
+  if(projection.degenerate()) return true;
+  int sign_changes = 0, last_sign = 0;
+  for(std::size_t i = 0; i < k; ++i) {
+    const std::size_t j = (i + 1) % k, l = (i + 2) % k;
+    const double turn = (uv[2 * j] - uv[2 * i]) * (uv[2 * l + 1] - uv[2 * i + 1]) -
+                        (uv[2 * j + 1] - uv[2 * i + 1]) * (uv[2 * l] - uv[2 * i]);
+    if(turn < 0) return false;
+    const double du = uv[2 * j] - uv[2 * i];
+    const int sign = (du > 0) - (du < 0);
+    if(sign != 0) {
+      if(last_sign != 0 && sign != last_sign) ++sign_changes;
+      last_sign = sign;
+    }
+  }
+  return sign_changes <= 2;
+}
+
+/// triangulates `polygons` into `triangles` as the VRML reader does: a convex polygon by a fan
+/// from its first corner, a non-convex one by ear clipping (`internal/triangulate_polygon.h`);
+/// skipping (and counting in `report`) those of fewer than 3 corners and those of more than 3
+/// that repeat a vertex (not simple polygons: the triangles of `1 2 3 4 1 2 3 4 ...` would be a
+/// pile of copies of the same ones). The check of repeats is linear in the number of corners.
+template <class Point, class Face>
+void triangulate_polygons(const std::vector<std::vector<std::size_t>>& polygons, const std::vector<Point>& points,
                           const std::string& name, std::vector<Face>& triangles, Soup_read_report& report)
 {
+  const std::size_t number_of_points = points.size();
+  std::vector<std::array<std::size_t, 3>> clipped;
+  std::vector<double> uv;
   const std::size_t none = static_cast<std::size_t>(-1);
   std::vector<std::size_t> last_seen_in(number_of_points, none);
   for(std::size_t f = 0; f < polygons.size(); ++f) {
@@ -125,8 +164,16 @@ void triangulate_polygons(const std::vector<std::vector<std::size_t>>& polygons,
         continue;
       }
     }
-    for(std::size_t k = 1; k + 1 < poly.size(); ++k)
-      triangles.push_back(Soup_topology::internal::make_triangle<Face>(poly[0], poly[k], poly[k + 1]));
+    if(poly.size() == 3 || is_convex_polygon(points, poly, uv)) {
+      for(std::size_t k = 1; k + 1 < poly.size(); ++k)
+        triangles.push_back(Soup_topology::internal::make_triangle<Face>(poly[0], poly[k], poly[k + 1]));
+      continue;
+    }
+    ++report.non_convex_polygons;
+    clipped.clear();
+    if(Soup_topology::internal::triangulate_polygon(points, poly, clipped) != 0) ++report.ear_clipping_failures;
+    for(const std::array<std::size_t, 3>& t : clipped)
+      triangles.push_back(Soup_topology::internal::make_triangle<Face>(t[0], t[1], t[2]));
   }
 }
 
@@ -176,7 +223,7 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
     report.input_polygons = polygons.size();
     report.input_vertices = pts.size();
     Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
-    triangulate_polygons(polygons, pts.size(), name, tris, report);
+    triangulate_polygons(polygons, pts, name, tris, report);
     report.input_triangles = tris.size();
     report.exact_duplicates = merge_duplicate_points(pts, tris);
     report.collapsed_triangles = remove_collapsed_triangles(tris);
@@ -193,7 +240,9 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
 /// \brief reads `filename` (STL binary or ASCII, OFF, OBJ, PLY, VRML 2.0 `.wrl`, chosen by the
 /// extension) into an indexed triangle soup whose exactly equal points are merged: `points`
 /// holds distinct points, `triangles` index triples of distinct vertices. Polygons are
-/// fan-triangulated.
+/// triangulated as `read_VRML()` does: a convex one by a fan from its first corner, a non-convex
+/// one by ear clipping in the plane of its Newell normal (counted in `non_convex_polygons`; the
+/// corners left when no ear is found are fanned and counted in `ear_clipping_failures`).
 ///
 /// STL goes through `read_STL_triangles()` and `index_triangles()`; OFF through
 /// `read_OFF_polygons()`, OBJ through `read_OBJ_polygons()`, PLY through

@@ -1,19 +1,19 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// A check of the header of a PLY file before CGAL's reader sees it.
+// A check of the header of a PLY file before it is read (IO/PLY.h).
 //
-// CGAL 5.5's PLY reader has undefined behaviour on three kinds of headers, all found by
-// fuzz/fuzz_ply: a `property` line before any `element` line (PLY_reader::init() calls back() on
-// an empty vector); a vertex coordinate `x`, `y` or `z` of a type other than float or double
-// (PLY_read_number::assign() dereferences the null result of a dynamic_cast); two properties of
-// one element with the same name (the type is checked on one, the value read from the other).
-// And it pushes one point per announced vertex even when a vertex has no property to read, so
-// "element vertex 988888888888888" with no property allocates until memory runs out; and it
-// allocates the count of a list before reading its elements, so a 32-bit count of 2 billion
-// costs 8 GB: list counts wider than 16 bits (rare: exporters write `list uchar int`) are
-// refused. The header is read here with the same tokenisation as CGAL (std::getline, then >>), and such
-// files are refused.
+// It was written for CGAL 5.5's PLY reader, which has undefined behaviour on three kinds of
+// headers, all found by fuzz/fuzz_ply: a `property` line before any `element` line
+// (PLY_reader::init() calls back() on an empty vector); a vertex coordinate `x`, `y` or `z` of a
+// type other than float or double (PLY_read_number::assign() dereferences the null result of a
+// dynamic_cast); two properties of one element with the same name (the type is checked on one,
+// the value read from the other). And it pushes one point per announced vertex even when a
+// vertex has no property to read, and allocates the count of a list before reading its
+// elements. Our reader has none of these problems, but the refusals are documented
+// (doc/Soup_topology/Bad_input.md) and kept: coordinates of an integer type and list counts
+// wider than 16 bits (rare: exporters write `list uchar int`) are refused. The header is read
+// with the same tokenisation as CGAL's reader (std::getline, then >>).
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_PLY_HEADER_H
 #define SOUP_TOPOLOGY_INTERNAL_PLY_HEADER_H
