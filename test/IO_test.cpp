@@ -852,6 +852,7 @@ TEST_F(HostileInput, Issue21StlSolidNamesAreTheRestOfTheLine)
   // `solid endsolid` gave an empty mesh; a solid named `facet` was refused.
   EXPECT_EQ(read("a.stl", "solid endsolid\n" + one_facet + "endsolid endsolid\n", points, triangles).input_triangles, 1u);
   EXPECT_EQ(read("b.stl", "solid facet\n" + one_facet + "endsolid facet\n", points, triangles).input_triangles, 1u);
+  EXPECT_EQ(read("bom.stl", "\xEF\xBB\xBFsolid bom\r\n" + one_facet + "endsolid bom\r\n", points, triangles).input_triangles, 1u);
   // Several solids, one after the other, are all read.
   EXPECT_EQ(read("c.stl", "solid a\n" + one_facet + "endsolid a\nsolid b\n" + one_facet + "endsolid\n", points, triangles)
               .input_triangles, 2u);

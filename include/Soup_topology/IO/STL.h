@@ -174,7 +174,8 @@ struct STL_prefix_check
 /// in its first facets' worth of bytes; else it is binary, also when its 80-byte header starts
 /// with `solid`. An ASCII file is `solid` and a name (the rest of that line: `solid facet` names
 /// the solid "facet"), facets, `endsolid` and a name on its line; several solids follow each
-/// other; keywords are case-insensitive; lines end with LF, CR LF or CR.
+/// other; keywords are case-insensitive; lines end with LF, CR LF or CR; a UTF-8 byte order
+/// mark before `solid` is skipped.
 /// \tparam Point a `Point_3` constructible from three `double`
 /// \throws Read_error naming the line (ASCII) or the facet (binary) on malformed input: a
 /// truncated binary file, a triangle count that does not match the size, a missing keyword, a
@@ -188,9 +189,11 @@ STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vect
   STL_read_result result;
   std::vector<std::array<Point, 3>> read;
   const char* const end = data + size;
-  if(internal::looks_like_ascii_stl(data, end)) {
+  // A UTF-8 byte order mark before "solid" is skipped (a binary header may start with anything).
+  const std::size_t bom = Soup_topology::internal::utf8_bom_size(data, end);
+  if(internal::looks_like_ascii_stl(data + bom, end)) {
     using S = internal::STL_ascii_scanner;
-    S in(data, end, name);
+    S in(data + bom, end, name);
     std::string_view t;
     bool more = in.next(t); // "solid", checked by looks_like_ascii_stl
     while(more) {
