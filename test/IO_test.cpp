@@ -1,25 +1,34 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Tests of the VRML reader (Soup_topology/IO/VRML.h) and of the triangle strip and fan adapters
-// (Soup_topology/triangle_strips.h). One executable for both: CGAL headers compile slowly.
+// Tests of the VRML reader (Soup_topology/IO/VRML.h), of the triangle strip and fan adapters
+// (Soup_topology/triangle_strips.h), and of the strict readers of STL, OFF, OBJ and PLY behind
+// read_triangle_soup() (files, streams, memory) against hostile input. One executable: CGAL
+// headers compile slowly.
 
+#include <Soup_topology/IO/OBJ.h>
+#include <Soup_topology/IO/OFF.h>
+#include <Soup_topology/IO/STL.h>
 #include <Soup_topology/IO/VRML.h>
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/triangle_strips.h>
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
 
+#include "bounded_run.h"
 #include "test_utilities.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/IO/PLY.h>
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -708,6 +717,366 @@ TEST(TriangleStrips, PatentFigure6StripsWeldIntoOnePiece)
   EXPECT_EQ(after.border_edges().size(), 12u); // the outline of a 4 x 2 rectangle of squares
   EXPECT_TRUE(after.inconsistently_oriented_edges().empty());
   expect_consistent_orientation(triangles);
+}
+
+
+// ------------------------------------------------------------------ hostile input (issue 21)
+
+// Hostile files are written in a fresh temporary folder; each case reads one through
+// read_triangle_soup() and expects either the soup or the message of the error.
+class HostileInput : public ::testing::Test
+{
+protected:
+  void SetUp() override { folder = soup_test::temporary_folder("hostile_readers"); }
+  void TearDown() override
+  {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+  }
+  std::string write(const std::string& name, const std::string& content) const
+  {
+    const std::string path = folder + "/" + name;
+    std::ofstream out(path, std::ios::binary);
+    out << content;
+    return path;
+  }
+  // the message of the Read_error or Invalid_input thrown reading `name` ("" if none); the
+  // containers must be untouched then
+  std::string error(const std::string& name, const std::string& content) const
+  {
+    const std::string path = write(name, content);
+    std::vector<Point> points{Point(7, 7, 7)};
+    std::vector<Triangle> triangles{{0, 0, 0}};
+    std::string message;
+    try {
+      ST::IO::read_triangle_soup(path, points, triangles);
+    } catch(const ST::IO::Read_error& e) {
+      message = e.what();
+    } catch(const ST::Invalid_input& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(points.size(), 1u);
+    EXPECT_EQ(triangles.size(), 1u);
+    return message;
+  }
+  ST::IO::Soup_read_report read(const std::string& name, const std::string& content, std::vector<Point>& points,
+                                std::vector<Triangle>& triangles) const
+  {
+    return ST::IO::read_triangle_soup(write(name, content), points, triangles);
+  }
+  std::string folder;
+};
+
+#define EXPECT_MESSAGE(message, expected)                                                             \
+  EXPECT_NE(std::string(message).find(expected), std::string::npos)                                   \
+    << "'" << (message) << "' does not contain '" << (expected) << "'"
+
+const std::string three_vertices_obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+TEST_F(HostileInput, Issue21ObjBadTokensNameTheLine)
+{
+  // CGAL's reader dropped the face (or read 4x as 4) and returned a soup.
+  EXPECT_MESSAGE(error("a.obj", three_vertices_obj + "f 1 two 3\n"), "a.obj:4: 'two' is not a vertex index (face 1)");
+  EXPECT_MESSAGE(error("b.obj", three_vertices_obj + "f 1 2 99999999999999999999\n"),
+                 "b.obj:4: vertex index '99999999999999999999' of face 1 is too large");
+  EXPECT_MESSAGE(error("c.obj", "v 0 0 0\nv 1 0 0\nv 4x 1 0\nf 1 2 3\n"), "c.obj:3: '4x' is not a number (vertex 3)");
+  EXPECT_MESSAGE(error("d.obj", three_vertices_obj + "f 1/x 2 3\n"), "d.obj:4: corner '1/x' of face 1: texture index 'x'");
+  EXPECT_MESSAGE(error("e.obj", "v 0 0\n"), "e.obj:1: vertex 1 has 2 coordinates, expected 3");
+  EXPECT_MESSAGE(error("f.obj", "v 0 nan 0\n"), "f.obj:1: non-finite coordinate 'nan' (vertex 1)");
+}
+
+TEST_F(HostileInput, Issue21ObjIndicesAreReportedAsWritten)
+{
+  // CGAL's reader reported index 0 as index 4.
+  EXPECT_MESSAGE(error("zero.obj", three_vertices_obj + "f 0 1 2\n"), "zero.obj:4: vertex index 0 in face 1 (OBJ indices start at 1)");
+  EXPECT_MESSAGE(error("far.obj", three_vertices_obj + "f 1 2 3\nf 1 2 9\n# end\n"),
+                 "far.obj:5: vertex index 9 of face 2 is out of range (3 vertices)");
+  EXPECT_MESSAGE(error("neg.obj", three_vertices_obj + "f -1 -2 -4\n"),
+                 "neg.obj:4: vertex index -4 of face 1 refers to before the first vertex (3 vertices so far)");
+}
+
+TEST_F(HostileInput, ObjFormsCommentsAndOtherStatements)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const std::string obj = "# a comment\r\nmtllib m.mtl\r\no thing\r\nv 0 0 0 1\r\nv 1 0 0\r\nv 0 1 0 # tail\r\n"
+                          "vt 0 0\r\nvn 0 0 1\r\nusemtl red\r\ns off\r\nf 1/1/1 2//1 3/1\r\n"
+                          "v 0 0 1\r\nf -4 -2 -1\r\nl 1 2\r\nf 1 2\r\n";
+  const ST::IO::Soup_read_report r = read("forms.obj", obj, points, triangles);
+  EXPECT_EQ(r.format, "obj");
+  EXPECT_EQ(r.input_vertices, 4u);
+  EXPECT_EQ(r.input_polygons, 3u);
+  EXPECT_EQ(r.skipped_polygons, 1u); // f 1 2
+  ASSERT_EQ(triangles.size(), 2u);
+  bool found = false; // -1 is the last vertex read so far
+  for(const Triangle& t : triangles)
+    for(std::size_t v : t) found = found || points[v] == Point(0, 0, 1);
+  EXPECT_TRUE(found);
+
+  std::vector<Point> pts;
+  std::vector<std::vector<std::size_t>> polygons;
+  const ST::IO::OBJ_read_result o = ST::IO::read_OBJ_polygons(obj, pts, polygons, "forms.obj");
+  EXPECT_EQ(o.vertices, 4u);
+  EXPECT_EQ(o.faces, 3u);
+  EXPECT_EQ(o.ignored_statements, 7u);
+  EXPECT_EQ(polygons[1], (std::vector<std::size_t>{0, 2, 3}));
+}
+
+TEST_F(HostileInput, Issue21OffNulByteBomAndLoneCarriageReturns)
+{
+  // `1\0xyz` read as 1 before.
+  EXPECT_MESSAGE(error("nul.off", std::string("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1\0xyz 0\n3 0 1 2\n", 37)),
+                 "nul.off:5: '1\\x00xyz' is not a number (vertex 2 of 3)");
+  EXPECT_MESSAGE(error("x.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 4x 0\n3 0 1 2\n"), "x.off:5: '4x' is not a number");
+  // A UTF-8 byte order mark, and lines ended by CR alone, are read.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::IO::Soup_read_report r = read("cr.off", "\xEF\xBB\xBFOFF\r4 2 0\r0 0 0\r1 0 0\r0 1 0\r1 1 0 # c\r3 0 1 2\r3 1 3 2\r",
+                                          points, triangles);
+  EXPECT_EQ(r.input_vertices, 4u);
+  EXPECT_EQ(triangles.size(), 2u);
+  // The line numbers of CR-only files count the CRs.
+  EXPECT_MESSAGE(error("crbad.off", "OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 5\r"), "crbad.off:6: face 0 of 1 has vertex index 5");
+  // A token of 10 MB is cut in the message.
+  const std::string message = error("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 " + std::string(10000000, '7') + "x 0\n3 0 1 2\n");
+  EXPECT_MESSAGE(message, "long.off:5:");
+  EXPECT_LT(message.size(), 300u);
+}
+
+const std::string one_facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+
+TEST_F(HostileInput, Issue21StlSolidNamesAreTheRestOfTheLine)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  // `solid endsolid` gave an empty mesh; a solid named `facet` was refused.
+  EXPECT_EQ(read("a.stl", "solid endsolid\n" + one_facet + "endsolid endsolid\n", points, triangles).input_triangles, 1u);
+  EXPECT_EQ(read("b.stl", "solid facet\n" + one_facet + "endsolid facet\n", points, triangles).input_triangles, 1u);
+  EXPECT_EQ(read("bom.stl", "\xEF\xBB\xBFsolid bom\r\n" + one_facet + "endsolid bom\r\n", points, triangles).input_triangles, 1u);
+  // Several solids, one after the other, are all read.
+  EXPECT_EQ(read("c.stl", "solid a\n" + one_facet + "endsolid a\nsolid b\n" + one_facet + "endsolid\n", points, triangles)
+              .input_triangles, 2u);
+  // Anything else after endsolid is an error.
+  EXPECT_MESSAGE(error("d.stl", "solid a\n" + one_facet + "endsolid a\ngarbage\n"),
+                 "d.stl:10: expected 'solid' after 'endsolid', found 'garbage'");
+}
+
+TEST_F(HostileInput, Issue21StlMessages)
+{
+  // A binary file whose header starts with "solid" and whose count is wrong is described as binary.
+  std::string binary = "solid binary header" + std::string(61, ' ');
+  const std::uint32_t five = 5;
+  binary.append(reinterpret_cast<const char*>(&five), 4);
+  binary.append(50, '\0');
+  EXPECT_MESSAGE(error("s.stl", binary), "s.stl: binary STL header announces 5 facets, the file holds 1 complete facets");
+  // An ASCII file without `solid` is neither.
+  EXPECT_MESSAGE(error("n.stl", one_facet + one_facet),
+                 "n.stl: neither an ASCII STL (it does not start with 'solid') nor a binary STL");
+  // A bad token of 10 MB is cut.
+  const std::string message = error("t.stl", "solid t\nfacet normal 0 0 " + std::string(10000000, '1') + "q\n");
+  EXPECT_MESSAGE(message, "t.stl:2: '1111111111");
+  EXPECT_LT(message.size(), 300u);
+}
+
+TEST_F(HostileInput, Issue21FolderAndNamedPipe)
+{
+  std::filesystem::create_directory(folder + "/d.off");
+  EXPECT_MESSAGE(error("d.off", ""), "d.off: is a folder, not a file");
+  // A named pipe is read until its writer closes it.
+  const std::string fifo = folder + "/p.off";
+  std::filesystem::remove_all(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const soup_test::Bounded_run r = soup_test::run_bounded(
+    {"/bin/sh", "-c", "printf 'OFF\\n3 1 0\\n0 0 0\\n1 0 0\\n0 1 0\\n3 0 1 2\\n' > '" + fifo + "' & exec '" +
+                        std::string(SOUP_TOPOLOGY_CLI) + "' stats --json '" + fifo + "'"},
+    5, 500);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_MESSAGE(r.out, "\"input_polygons\": 1");
+}
+
+TEST_F(HostileInput, Issue21EndlessDevicesAreBounded)
+{
+  // A link to an endless device behind each extension: refused within 2 s and 500 MB.
+  for(const char* device : {"/dev/zero", "/dev/urandom"})
+    for(const char* ext : {"stl", "off", "obj", "ply", "wrl"}) {
+      const std::string link = folder + "/" + std::string(device).substr(5) + "." + ext;
+      std::filesystem::create_symlink(device, link);
+      const soup_test::Bounded_run r = soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "stats", link}, 2, 500);
+      EXPECT_EQ(r.signal, 0) << link;
+      EXPECT_EQ(r.exit_code, 2) << link << ": " << r.err;
+      EXPECT_MESSAGE(r.err, link + ":");
+      EXPECT_LT(r.wall_seconds, 2.0) << link;
+      EXPECT_LT(r.peak_rss_mb, 500u) << link;
+    }
+}
+
+TEST_F(HostileInput, StreamLimitIsAnError)
+{
+  std::istringstream in("solid a\n" + one_facet + "endsolid a\n");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  try {
+    ST::IO::read_triangle_soup(in, "stl", points, triangles, "piped.stl", 50);
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Read_error& e) {
+    EXPECT_MESSAGE(e.what(), "piped.stl: more than 50 bytes for an input that is not a regular file");
+  }
+  EXPECT_TRUE(points.empty());
+}
+
+TEST_F(HostileInput, Issue21PolygonRepeatingAVertexIsSkippedInLinearTime)
+{
+  std::string face = "f";
+  for(int k = 0; k < 250000; ++k) face += " 1 2 3 4";
+  const std::string path = write("r.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n" + face + "\nf 1 2 3 4\n");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(path, points, triangles);
+  EXPECT_EQ(r.non_simple_polygons, 1u);
+  EXPECT_EQ(r.skipped_polygons, 1u);
+  EXPECT_EQ(triangles.size(), 2u);
+  // 1M indices: the tool took minutes with the fan of this face.
+  const soup_test::Bounded_run run = soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "stats", path}, 2, 500);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_LT(run.wall_seconds, 2.0);
+}
+
+
+// a PLY file of the 4 points and 2 faces below, in `format`, with `tail` after the data
+std::string ply_file(const std::string& format, const std::string& tail = "", int index = 3)
+{
+  const float xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {0.1f, 1, 0}, {1, 1, 0.3f}};
+  std::string s = "ply\nformat " + format + " 1.0\ncomment made by hand\nelement vertex 4\nproperty float x\n"
+                  "property float y\nproperty float z\nproperty uchar red\nelement face 2\n"
+                  "property list uchar int vertex_indices\nend_header\n";
+  if(format == "ascii") {
+    s += "0 0 0 1\n1 0 0 2\n0.1 1 0 3\n1 1 0.3 4\n3 0 1 2\n3 1 " + std::to_string(index) + " 2\n";
+    return s + tail;
+  }
+  const bool big = format == "binary_big_endian";
+  const auto put = [&](const void* v, std::size_t n) {
+    const char* b = static_cast<const char*>(v);
+    for(std::size_t i = 0; i < n; ++i) s += big ? b[n - 1 - i] : b[i];
+  };
+  for(int v = 0; v < 4; ++v) {
+    put(xyz[v], 4); put(xyz[v] + 1, 4); put(xyz[v] + 2, 4);
+    s += char(v);
+  }
+  const std::int32_t faces[2][3] = {{0, 1, 2}, {1, index, 2}};
+  for(const auto& f : faces) {
+    s += char(3);
+    for(std::int32_t i : f) put(&i, 4);
+  }
+  return s + tail;
+}
+
+TEST_F(HostileInput, Issue21PlyIsReadStrictly)
+{
+  for(const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    const ST::IO::Soup_read_report r = read("ok.ply", ply_file(format), points, triangles);
+    EXPECT_EQ(r.input_vertices, 4u) << format;
+    EXPECT_EQ(triangles.size(), 2u) << format;
+    // The same soup as CGAL's reader.
+    std::vector<Point> theirs;
+    std::vector<std::vector<std::size_t>> their_polygons, our_polygons;
+    std::vector<Point> ours;
+    std::ifstream in(folder + "/ok.ply", std::ios::binary);
+    ASSERT_TRUE(CGAL::IO::read_PLY(in, theirs, their_polygons)) << format;
+    ST::IO::read_PLY_polygons(ply_file(format), ours, our_polygons);
+    EXPECT_EQ(ours, theirs) << format;
+    EXPECT_EQ(our_polygons, their_polygons) << format;
+  }
+  // Bytes after the binary data were read without a word.
+  EXPECT_MESSAGE(error("tail.ply", ply_file("binary_little_endian", "garbage")),
+                 "tail.ply: 7 bytes after the last element the header announces");
+  EXPECT_MESSAGE(error("tail2.ply", ply_file("ascii", "3 0 1 2\n")), "tail2.ply:18: data after the last element");
+  // -1 was reported as 18446744073709551615.
+  EXPECT_MESSAGE(error("neg.ply", ply_file("binary_little_endian", "", -1)), "neg.ply: face 1 has a negative vertex index (-1)");
+  EXPECT_MESSAGE(error("nega.ply", ply_file("ascii", "", -1)), "nega.ply:17: face 1 has a negative vertex index (-1)");
+  EXPECT_MESSAGE(error("far.ply", ply_file("ascii", "", 9)), "far.ply:17: face 1 has vertex index 9, out of range (4 vertices)");
+  // Tokens that are not entirely numbers of their type.
+  std::string bad = ply_file("ascii");
+  bad.replace(bad.find("0.1 1 0 3"), 9, "0.1 1 0 300");
+  EXPECT_MESSAGE(error("type.ply", bad), "type.ply:14: '300' is not an integer of the declared type (vertex 2, property 'red')");
+  bad = ply_file("ascii");
+  bad.replace(bad.find("1 1 0.3 4"), 9, "1 1x 0.3 4");
+  EXPECT_MESSAGE(error("x.ply", bad), "x.ply:15: '1x' is not a number (vertex 3, property 'y')");
+  std::string truncated = ply_file("binary_big_endian");
+  truncated.resize(truncated.size() - 2);
+  EXPECT_MESSAGE(error("short.ply", truncated), "short.ply: the binary data ends inside value 2 of face 1");
+}
+
+// ------------------------------------------------------------------ streams and memory (issue 20)
+
+TEST(ReadTriangleSoup, Issue20StreamAndMemoryReadLikeTheFile)
+{
+  for(const char* file : {"cgal_repair/quads_to_stitch.off", "real_defects/openscad/issue945e.stl",
+                          "real_defects/admesh/block/exact-good.stl", "cad/kicad/SOT-23.wrl"}) {
+    const std::string path = soup_test::data_file(file);
+    const std::string ext = ST::IO::file_extension(path);
+    std::vector<Point> p1, p2, p3;
+    std::vector<Triangle> t1, t2, t3;
+    const ST::IO::Soup_read_report r1 = ST::IO::read_triangle_soup(path, p1, t1);
+    std::ifstream in(path, std::ios::binary);
+    const ST::IO::Soup_read_report r2 = ST::IO::read_triangle_soup(in, ext, p2, t2);
+    const std::string bytes = ST::IO::read_file_contents(path);
+    const ST::IO::Soup_read_report r3 =
+      ST::IO::read_triangle_soup(bytes.data(), bytes.size(), "." + ext, p3, t3, "in memory");
+    EXPECT_EQ(p1, p2) << file;
+    EXPECT_EQ(p1, p3) << file;
+    EXPECT_EQ(t1, t2) << file;
+    EXPECT_EQ(t1, t3) << file;
+    EXPECT_EQ(r1.input_triangles, r2.input_triangles);
+    EXPECT_EQ(r1.exact_duplicates, r3.exact_duplicates);
+    EXPECT_EQ(r2.format, ext);
+  }
+  // OBJ and PLY from memory, and the name in the messages.
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  EXPECT_EQ(ST::IO::read_triangle_soup(obj.data(), obj.size(), "OBJ", points, triangles).input_triangles, 1u);
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  std::istringstream in(ply);
+  EXPECT_EQ(ST::IO::read_triangle_soup(in, "ply", points, triangles).input_triangles, 1u);
+  try {
+    const std::string bad = "OFF\n3 1 0\n";
+    ST::IO::read_triangle_soup(bad.data(), bad.size(), "off", points, triangles, "buffer");
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Read_error& e) {
+    EXPECT_MESSAGE(e.what(), "buffer:2:");
+  }
+  EXPECT_THROW(ST::IO::read_triangle_soup(obj.data(), obj.size(), "dae", points, triangles), ST::IO::Read_error);
+}
+
+
+TEST(ReadTriangleSoup, Issue20PolygonsAreEarClipped)
+{
+  // A dart whose corner 3 is reflex: the fan from corner 0 covers twice the dart and flips a
+  // triangle; ear clipping gives two counterclockwise triangles of total area 1.
+  const std::string off = "OFF\n4 1 0\n0 0 0\n2 1 0\n0 2 0\n1 1 0\n4 0 1 2 3\n";
+  const std::string obj = "v 0 0 0\nv 2 1 0\nv 0 2 0\nv 1 1 0\nf 1 2 3 4\n";
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                          "0 0 0\n2 1 0\n0 2 0\n1 1 0\n4 0 1 2 3\n";
+  for(const auto& [format, text] : {std::make_pair("off", off), std::make_pair("obj", obj), std::make_pair("ply", ply)}) {
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(text.data(), text.size(), format, points, triangles);
+    ASSERT_EQ(triangles.size(), 2u) << format;
+    EXPECT_EQ(r.non_convex_polygons, 1u);
+    EXPECT_EQ(r.ear_clipping_failures, 0u);
+    double area = 0;
+    for(const Triangle& t : triangles) {
+      const double z = CGAL::cross_product(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]).z();
+      EXPECT_GT(z, 0) << format;
+      area += z / 2;
+    }
+    EXPECT_DOUBLE_EQ(area, 1.0) << format;
+  }
 }
 
 } // namespace

@@ -13,6 +13,7 @@
 #define SOUP_TOPOLOGY_IO_OFF_H
 
 #include <Soup_topology/IO/Read_error.h>
+#include <Soup_topology/internal/reader_input.h>
 
 #include <cerrno>
 #include <cmath>
@@ -20,6 +21,7 @@
 #include <cstdlib>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -39,30 +41,31 @@ namespace internal {
 class OFF_scanner
 {
 public:
-  OFF_scanner(const char* b, const char* e, const std::string& name) : p_(b), e_(e), name_(name) {}
+  OFF_scanner(const char* b, const char* e, const std::string& name)
+    : p_(b + Soup_topology::internal::utf8_bom_size(b, e)), e_(e), name_(name) {}
 
   /// the next token, skipping white space and `#` comments; `false` at the end of the data.
-  bool next(std::string& token)
+  bool next(std::string_view& token)
   {
     skip_space_and_comments();
     if(p_ == e_) return false;
     const char* s = p_;
     while(p_ < e_ && !is_space(*p_) && *p_ != '#') ++p_;
-    token.assign(s, p_);
+    token = std::string_view(s, static_cast<std::size_t>(p_ - s));
     token_line_ = line_;
     return true;
   }
   /// skips what is left of the current line (the attributes that follow the numbers we read).
   void skip_rest_of_line()
   {
-    while(p_ < e_ && *p_ != '\n') ++p_;
+    while(p_ < e_ && *p_ != '\n' && *p_ != '\r') ++p_;
   }
   /// `true` if a token follows on the current line.
   bool more_on_line() const
   {
     const char* q = p_;
-    while(q < e_ && is_space(*q) && *q != '\n') ++q;
-    return q < e_ && *q != '\n' && *q != '#';
+    while(q < e_ && is_space(*q) && *q != '\n' && *q != '\r') ++q;
+    return q < e_ && *q != '\n' && *q != '\r' && *q != '#';
   }
   /// `true` if only white space and comments are left.
   bool at_end()
@@ -72,30 +75,33 @@ public:
   }
   std::size_t remaining_bytes() const { return static_cast<std::size_t>(e_ - p_); }
 
-  std::string token_or_fail(const std::string& expected)
+  std::string_view token_or_fail(const std::string& expected)
   {
-    std::string t;
+    std::string_view t;
     if(!next(t)) fail("unexpected end of file, expected " + expected);
     return t;
   }
+  static std::string quoted(std::string_view t)
+  { return "'" + Soup_topology::internal::printable(t.data(), t.data() + t.size()) + "'"; }
   double number(const std::string& what)
   {
-    const std::string t = token_or_fail(what);
-    char* end = nullptr;
-    const double x = std::strtod(t.c_str(), &end);
-    if(end == t.c_str() || *end != '\0') fail("'" + t.substr(0, 40) + "' is not a number (" + what + ")");
-    if(!std::isfinite(x)) fail("non-finite coordinate '" + t.substr(0, 40) + "' (" + what + ")");
+    const std::string_view t = token_or_fail(what);
+    double x;
+    if(!Soup_topology::internal::parse_double(t.data(), t.data() + t.size(), x))
+      fail(quoted(t) + " is not a number (" + what + ")");
+    if(!std::isfinite(x)) fail("non-finite coordinate " + quoted(t) + " (" + what + ")");
     return x;
   }
   /// a signed integer; `what` names it in the error messages.
-  long long integer(const std::string& what)
+  long long integer(const std::string& what) { return integer(token_or_fail(what), what); }
+  long long integer(std::string_view t, const std::string& what)
   {
-    const std::string t = token_or_fail(what);
-    char* end = nullptr;
-    errno = 0;
-    const long long x = std::strtoll(t.c_str(), &end, 10);
-    if(end == t.c_str() || *end != '\0') fail("'" + t.substr(0, 40) + "' is not an integer (" + what + ")");
-    if(errno == ERANGE) fail("'" + t.substr(0, 40) + "' is too large (" + what + ")");
+    long long x = 0;
+    switch(Soup_topology::internal::parse_integer(t.data(), t.data() + t.size(), x)) {
+    case Soup_topology::internal::Integer_parse::NOT_AN_INTEGER: fail(quoted(t) + " is not an integer (" + what + ")");
+    case Soup_topology::internal::Integer_parse::TOO_LARGE: fail(quoted(t) + " is too large (" + what + ")");
+    default: break;
+    }
     return x;
   }
   /// an integer >= 0.
@@ -110,12 +116,14 @@ public:
 
 private:
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+  // A line ends with LF, CR LF or a lone CR (old Mac files).
   void skip_space_and_comments()
   {
     while(p_ < e_) {
       if(*p_ == '\n') { ++line_; ++p_; }
+      else if(*p_ == '\r') { ++p_; if(p_ == e_ || *p_ != '\n') ++line_; }
       else if(is_space(*p_)) ++p_;
-      else if(*p_ == '#') { while(p_ < e_ && *p_ != '\n') ++p_; }
+      else if(*p_ == '#') { while(p_ < e_ && *p_ != '\n' && *p_ != '\r') ++p_; }
       else break;
     }
   }
@@ -127,33 +135,34 @@ private:
 };
 
 /// parses an OFF keyword: `[ST][C][N][4][n]OFF`; returns false if `t` is not one.
-inline bool parse_OFF_keyword(const std::string& t, bool& texture, bool& colour, bool& normal, bool& homogeneous,
+inline bool parse_OFF_keyword(std::string_view t, bool& texture, bool& colour, bool& normal, bool& homogeneous,
                               bool& dimension)
 {
   std::size_t i = 0;
   texture = colour = normal = homogeneous = dimension = false;
-  if(t.compare(i, 2, "ST") == 0) { texture = true; i += 2; }
+  if(t.substr(0, 2) == "ST") { texture = true; i += 2; }
   if(i < t.size() && t[i] == 'C') { colour = true; ++i; }
   if(i < t.size() && t[i] == 'N') { normal = true; ++i; }
   if(i < t.size() && t[i] == '4') { homogeneous = true; ++i; }
   if(i < t.size() && t[i] == 'n') { dimension = true; ++i; }
-  return t.compare(i, std::string::npos, "OFF") == 0;
+  return t.substr(i) == "OFF";
 }
 
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyIO
-/// \brief reads the OFF file held in `data` (the whole file, ASCII) into `points` and
+/// \brief reads the OFF file held in `[data, data + size)` (the whole file, ASCII) into `points` and
 /// `polygons` (appended; polygons index `points` from the size it had on entry).
 ///
 /// Accepted: the keywords `OFF`, `COFF`, `NOFF`, `CNOFF`, `STOFF`, `4OFF`, `nOFF` (dimension 3)
 /// and their combinations, `#` comments anywhere, the counts on the keyword's line or on the
-/// next. One vertex or face per line: what follows the coordinates of a vertex or the indices of
+/// next, a UTF-8 byte order mark before the keyword, lines ended by LF, CR LF or CR alone. One vertex or face per line: what follows the coordinates of a vertex or the indices of
 /// a face on its line (normals, colours, texture coordinates) is ignored. Faces of any size are
 /// returned as they are (also those with fewer than 3 corners or a repeated index).
 ///
 /// Rejected with a `Read_error` whose message reads `"<name>:<line>: <what>"`: a missing or
-/// unknown keyword, binary OFF, a count line that is not three integers >= 0, counts that the
+/// unknown keyword, binary OFF, a count line that is not three integers >= 0 (a token is a number
+/// only if all of it is: `4x` or `1` followed by a NUL byte are not), counts that the
 /// data does not match (fewer vertices or faces than announced, or data after the last face), a
 /// number that does not parse, a NaN or infinite coordinate, a homogeneous coordinate of 0, a
 /// negative or out-of-range vertex index. Nothing is allocated from a count of the file: a
@@ -161,15 +170,15 @@ inline bool parse_OFF_keyword(const std::string& t, bool& texture, bool& colour,
 /// `points` and `polygons` are unchanged when an exception is thrown.
 /// \tparam Point a `Point_3` constructible from three `double`
 template <class Point>
-OFF_read_result read_OFF_polygons(const std::string& data, std::vector<Point>& points,
+OFF_read_result read_OFF_polygons(const char* data, std::size_t size, std::vector<Point>& points,
                                   std::vector<std::vector<std::size_t>>& polygons, const std::string& name = "OFF")
 {
-  internal::OFF_scanner in(data.data(), data.data() + data.size(), name);
-  std::string t;
+  internal::OFF_scanner in(data, data + size, name);
+  std::string_view t;
   if(!in.next(t)) in.fail("empty file, expected the OFF header");
   bool texture, colour, normal, homogeneous, dimension;
   if(!internal::parse_OFF_keyword(t, texture, colour, normal, homogeneous, dimension))
-    in.fail("expected the keyword OFF (or COFF, NOFF, ...), found '" + t.substr(0, 40) + "'");
+    in.fail("expected the keyword OFF (or COFF, NOFF, ...), found " + in.quoted(t));
   (void)texture; (void)colour; (void)normal; // their data is on the vertex lines, skipped
   if(dimension) {
     const std::size_t d = in.count("dimension");
@@ -177,15 +186,11 @@ OFF_read_result read_OFF_polygons(const std::string& data, std::vector<Point>& p
   }
   {
     // "BINARY" after the keyword reads where the number of vertices is expected.
-    std::string first;
+    std::string_view first;
     if(!in.next(first)) in.fail("unexpected end of file, expected the count line (vertices faces edges)");
     if(first == "BINARY") in.fail("binary OFF is not supported");
-    char* end = nullptr;
-    errno = 0;
-    const long long nv_signed = std::strtoll(first.c_str(), &end, 10);
-    if(end == first.c_str() || *end != '\0' || errno == ERANGE)
-      in.fail("'" + first.substr(0, 40) + "' is not an integer (number of vertices in the count line)");
-    if(nv_signed < 0) in.fail("negative number of vertices (" + first.substr(0, 40) + ") in the count line");
+    const long long nv_signed = in.integer(first, "number of vertices in the count line");
+    if(nv_signed < 0) in.fail("negative number of vertices (" + std::to_string(nv_signed) + ") in the count line");
     const std::size_t nv = static_cast<std::size_t>(nv_signed);
     const std::size_t nf = in.count("number of faces in the count line");
     if(in.more_on_line()) in.count("number of edges in the count line"); // optional, unused
@@ -236,8 +241,8 @@ OFF_read_result read_OFF_polygons(const std::string& data, std::vector<Point>& p
     }
     if(!in.at_end()) {
       in.next(t);
-      in.fail("data after the " + std::to_string(nf) + " faces the header announces ('" + t.substr(0, 40) +
-              "'): is the count line wrong?");
+      in.fail("data after the " + std::to_string(nf) + " faces the header announces (" + in.quoted(t) +
+              "): is the count line wrong?");
     }
     points.insert(points.end(), pts.begin(), pts.end());
     polygons.insert(polygons.end(), std::make_move_iterator(polys.begin()), std::make_move_iterator(polys.end()));
@@ -246,6 +251,15 @@ OFF_read_result read_OFF_polygons(const std::string& data, std::vector<Point>& p
     result.faces = nf;
     return result;
   }
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief reads the OFF file held in `data`, see above.
+template <class Point>
+OFF_read_result read_OFF_polygons(const std::string& data, std::vector<Point>& points,
+                                  std::vector<std::vector<std::size_t>>& polygons, const std::string& name = "OFF")
+{
+  return read_OFF_polygons(data.data(), data.size(), points, polygons, name);
 }
 
 } // namespace IO

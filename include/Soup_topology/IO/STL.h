@@ -13,6 +13,7 @@
 #define SOUP_TOPOLOGY_IO_STL_H
 
 #include <Soup_topology/IO/Read_error.h>
+#include <Soup_topology/internal/reader_input.h>
 
 #include <array>
 #include <cctype>
@@ -21,6 +22,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace Soup_topology {
@@ -42,33 +44,39 @@ class STL_ascii_scanner
 {
 public:
   STL_ascii_scanner(const char* b, const char* e, const std::string& name) : p_(b), e_(e), name_(name) {}
-  bool next(std::string& token)
+  bool next(std::string_view& token)
   {
-    while(p_ < e_ && is_stl_space(*p_)) { if(*p_ == '\n') ++line_; ++p_; }
+    while(p_ < e_ && is_stl_space(*p_)) advance();
     if(p_ == e_) return false;
     const char* s = p_;
     while(p_ < e_ && !is_stl_space(*p_)) ++p_;
-    token.assign(s, p_);
+    token = std::string_view(s, static_cast<std::size_t>(p_ - s));
     return true;
+  }
+  /// skips the rest of the current line (the name of a solid).
+  void skip_rest_of_line()
+  {
+    while(p_ < e_ && *p_ != '\n' && *p_ != '\r') ++p_;
   }
   void expect(const char* keyword)
   {
-    std::string t;
+    std::string_view t;
     if(!next(t)) fail(std::string("unexpected end of file, expected '") + keyword + "'");
-    if(!equal_nocase(t, keyword)) fail(std::string("expected '") + keyword + "', found '" + t + "'");
+    if(!equal_nocase(t, keyword)) fail(std::string("expected '") + keyword + "', found " + quoted(t));
   }
   double number()
   {
-    std::string t;
+    std::string_view t;
     if(!next(t)) fail("unexpected end of file, expected a number");
-    char* end = nullptr;
-    const double x = std::strtod(t.c_str(), &end);
-    if(end == t.c_str() || *end != '\0') fail("'" + t + "' is not a number");
+    double x;
+    if(!Soup_topology::internal::parse_double(t.data(), t.data() + t.size(), x)) fail(quoted(t) + " is not a number");
     return x;
   }
   [[noreturn]] void fail(const std::string& what) const
   { throw Read_error(name_ + ":" + std::to_string(line_) + ": " + what); }
-  static bool equal_nocase(const std::string& a, const char* b)
+  static std::string quoted(std::string_view t)
+  { return "'" + Soup_topology::internal::printable(t.data(), t.data() + t.size()) + "'"; }
+  static bool equal_nocase(std::string_view a, const char* b)
   {
     const std::size_t n = std::strlen(b);
     if(a.size() != n) return false;
@@ -78,91 +86,162 @@ public:
   }
   std::size_t line() const { return line_; }
 private:
+  // LF, CR LF and a lone CR end a line.
+  void advance()
+  {
+    if(*p_ == '\n') ++line_;
+    else if(*p_ == '\r' && (p_ + 1 == e_ || p_[1] != '\n')) ++line_;
+    ++p_;
+  }
   const char* p_;
   const char* e_;
   std::string name_;
   std::size_t line_ = 1;
 };
 
-inline bool looks_like_ascii_stl(const std::string& data)
+/// `true` if `[b, e)` holds a byte that no ASCII STL holds (a NUL or another control character
+/// than white space): then a file that starts with "solid" is a binary one (its header may say
+/// "solid").
+inline bool has_binary_byte(const char* b, const char* e)
 {
-  std::size_t i = 0;
-  while(i < data.size() && is_stl_space(data[i])) ++i;
-  if(data.size() - i < 5) return false;
-  std::string head = data.substr(i, 5);
-  for(char& c : head) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if(head != "solid") return false;
-  // Some binary files also start with "solid": they are recognised by their exact size.
-  if(data.size() >= 84) {
-    std::uint32_t n;
-    std::memcpy(&n, data.data() + 80, 4);
-    if(84 + 50 * std::uint64_t(n) == data.size()) return false;
+  for(; b < e; ++b) {
+    const unsigned char c = static_cast<unsigned char>(*b);
+    if(c < 0x20 && !is_stl_space(*b)) return true;
+    if(c == 0x7f) return true;
   }
+  return false;
+}
+
+/// `true` if the binary STL held in `[b, e)` announces exactly its size.
+inline bool binary_stl_size_matches(const char* b, const char* e)
+{
+  const std::size_t size = static_cast<std::size_t>(e - b);
+  if(size < 84) return false;
+  std::uint32_t n;
+  std::memcpy(&n, b + 80, 4);
+  return 84 + 50 * std::uint64_t(n) == size;
+}
+
+/// `true` if `[b, e)` starts, after white space, with "solid" (any case).
+inline bool starts_with_solid(const char* b, const char* e)
+{
+  while(b < e && is_stl_space(*b)) ++b;
+  if(e - b < 5) return false;
+  for(int i = 0; i < 5; ++i)
+    if(std::tolower(static_cast<unsigned char>(b[i])) != "solid"[i]) return false;
   return true;
 }
+
+inline bool looks_like_ascii_stl(const char* b, const char* e)
+{
+  if(!starts_with_solid(b, e)) return false;
+  // Some binary files also start with "solid": they are recognised by their exact size, or by
+  // a byte that is not text in the header or the first facets.
+  if(binary_stl_size_matches(b, e)) return false;
+  const std::size_t look = static_cast<std::size_t>(e - b) < 84 + 50 * 4 ? static_cast<std::size_t>(e - b) : 84 + 50 * 4;
+  return !has_binary_byte(b, b + look);
+}
+
+inline bool looks_like_ascii_stl(const std::string& data)
+{ return looks_like_ascii_stl(data.data(), data.data() + data.size()); }
+
+/// the check of the first bytes of an STL input of unknown size (see `read_bounded()`): a
+/// binary header announces the size, beyond which the input is refused without reading on.
+struct STL_prefix_check
+{
+  Soup_topology::internal::Input_size operator()(const char* b, const char* e) const
+  {
+    Soup_topology::internal::Input_size s;
+    if(starts_with_solid(b, e) && !has_binary_byte(b, e)) return s;
+    if(e - b < 84) return s;
+    std::uint32_t n;
+    std::memcpy(&n, b + 80, 4);
+    const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
+    if(expected < static_cast<std::uint64_t>(s.expected)) s.expected = static_cast<std::size_t>(expected);
+    s.what = "binary STL header announces " + std::to_string(n) + " facets (" + std::to_string(expected) + " bytes)";
+    return s;
+  }
+};
 
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyIO
-/// \brief reads the triangles of an STL file held in `data` (the whole file), binary or ASCII,
-/// appending each facet as 3 points to `triangles`. `name` is used in error messages.
+/// \brief reads the triangles of an STL file held in `[data, data + size)` (the whole file),
+/// binary or ASCII, appending each facet as 3 points to `triangles`. `name` is used in error
+/// messages.
+///
+/// A file is ASCII if it starts with `solid` (any case, after white space) and holds only text
+/// in its first facets' worth of bytes; else it is binary, also when its 80-byte header starts
+/// with `solid`. An ASCII file is `solid` and a name (the rest of that line: `solid facet` names
+/// the solid "facet"), facets, `endsolid` and a name on its line; several solids follow each
+/// other; keywords are case-insensitive; lines end with LF, CR LF or CR; a UTF-8 byte order
+/// mark before `solid` is skipped.
 /// \tparam Point a `Point_3` constructible from three `double`
 /// \throws Read_error naming the line (ASCII) or the facet (binary) on malformed input: a
 /// truncated binary file, a triangle count that does not match the size, a missing keyword, a
-/// number that does not parse. `triangles` is left unchanged then.
+/// token that is not entirely a number, anything but a new solid after `endsolid`, a file that
+/// is neither (no `solid` and a size that no binary count explains). `triangles` is left
+/// unchanged then. NaN and infinite coordinates are read (`read_triangle_soup()` refuses them).
 template <class Point>
-STL_read_result read_STL_triangles(const std::string& data, std::vector<std::array<Point, 3>>& triangles,
+STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vector<std::array<Point, 3>>& triangles,
                                    const std::string& name = "STL")
 {
   STL_read_result result;
   std::vector<std::array<Point, 3>> read;
-  if(internal::looks_like_ascii_stl(data)) {
-    internal::STL_ascii_scanner in(data.data(), data.data() + data.size(), name);
-    in.expect("solid");
-    std::string t;
-    // The name of the solid: the rest of the first line.
-    bool in_solid = true;
-    while(in.next(t)) {
-      if(internal::STL_ascii_scanner::equal_nocase(t, "facet")) break;
-      if(internal::STL_ascii_scanner::equal_nocase(t, "endsolid")) { in_solid = false; break; }
-    }
-    while(in_solid) {
-      if(internal::STL_ascii_scanner::equal_nocase(t, "endsolid")) break;
-      if(!internal::STL_ascii_scanner::equal_nocase(t, "facet"))
-        in.fail("expected 'facet' or 'endsolid', found '" + t + "'");
-      in.expect("normal");
-      in.number(); in.number(); in.number();
-      in.expect("outer");
-      in.expect("loop");
-      std::array<Point, 3> tri;
-      for(int k = 0; k < 3; ++k) {
-        in.expect("vertex");
-        const double x = in.number(), y = in.number(), z = in.number();
-        tri[static_cast<std::size_t>(k)] = Point(x, y, z);
+  const char* const end = data + size;
+  // A UTF-8 byte order mark before "solid" is skipped (a binary header may start with anything).
+  const std::size_t bom = Soup_topology::internal::utf8_bom_size(data, end);
+  if(internal::looks_like_ascii_stl(data + bom, end)) {
+    using S = internal::STL_ascii_scanner;
+    S in(data + bom, end, name);
+    std::string_view t;
+    bool more = in.next(t); // "solid", checked by looks_like_ascii_stl
+    while(more) {
+      if(!S::equal_nocase(t, "solid")) in.fail("expected 'solid' after 'endsolid', found " + S::quoted(t));
+      in.skip_rest_of_line(); // the name of the solid, which may be a keyword
+      for(;;) {
+        if(!in.next(t)) in.fail("unexpected end of file, expected 'endsolid'");
+        if(S::equal_nocase(t, "endsolid")) break;
+        if(!S::equal_nocase(t, "facet")) in.fail("expected 'facet' or 'endsolid', found " + S::quoted(t));
+        in.expect("normal");
+        in.number(); in.number(); in.number();
+        in.expect("outer");
+        in.expect("loop");
+        std::array<Point, 3> tri;
+        for(int k = 0; k < 3; ++k) {
+          in.expect("vertex");
+          const double x = in.number(), y = in.number(), z = in.number();
+          tri[static_cast<std::size_t>(k)] = Point(x, y, z);
+        }
+        in.expect("endloop");
+        in.expect("endfacet");
+        read.push_back(tri);
       }
-      in.expect("endloop");
-      in.expect("endfacet");
-      read.push_back(tri);
-      if(!in.next(t)) in.fail("unexpected end of file, expected 'endsolid'");
+      in.skip_rest_of_line(); // the name after endsolid
+      more = in.next(t);
     }
   } else {
     result.binary = true;
-    if(data.size() < 84)
-      throw Read_error(name + ": binary STL shorter than its 84-byte header (" + std::to_string(data.size()) +
+    if(size < 84)
+      throw Read_error(name + ": binary STL shorter than its 84-byte header (" + std::to_string(size) +
                        " bytes)");
     std::uint32_t n;
-    std::memcpy(&n, data.data() + 80, 4);
+    std::memcpy(&n, data + 80, 4);
     const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
+    if(expected != size && !internal::starts_with_solid(data, end) &&
+       !internal::has_binary_byte(data, data + (size < 84 + 50 * 4 ? size : 84 + 50 * 4)))
+      throw Read_error(name + ": neither an ASCII STL (it does not start with 'solid') nor a binary STL (its size, " +
+                       std::to_string(size) + " bytes, does not match the facet count of a binary header)");
     // Checked before any allocation: a header that claims 4 billion facets costs nothing.
-    if(data.size() < expected)
+    if(size < expected)
       throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
-                       std::to_string((data.size() - 84) / 50) + " complete facets (truncated at facet " +
-                       std::to_string((data.size() - 84) / 50) + ")");
-    if(data.size() > expected)
+                       std::to_string((size - 84) / 50) + " complete facets (truncated at facet " +
+                       std::to_string((size - 84) / 50) + ")");
+    if(size > expected)
       throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
-                       std::to_string(data.size() - expected) + " bytes more than that");
+                       std::to_string(size - expected) + " bytes more than that");
     read.resize(n);
-    const char* p = data.data() + 84;
+    const char* p = data + 84;
     for(std::uint32_t f = 0; f < n; ++f, p += 50) {
       float c[12];
       std::memcpy(c, p, sizeof c);
@@ -176,19 +255,27 @@ STL_read_result read_STL_triangles(const std::string& data, std::vector<std::arr
 }
 
 /// \ingroup PkgSoupTopologyIO
-/// \brief reads the whole file `filename` into a string.
-/// \throws Read_error if it cannot be opened or read.
-inline std::string read_file_contents(const std::string& filename)
+/// \brief reads the triangles of an STL file held in `data`, see above.
+template <class Point>
+STL_read_result read_STL_triangles(const std::string& data, std::vector<std::array<Point, 3>>& triangles,
+                                   const std::string& name = "STL")
 {
-  std::ifstream in(filename, std::ios::binary);
-  if(!in) throw Read_error(filename + ": cannot open the file for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if(size < 0) throw Read_error(filename + ": cannot read the file (is it a folder?)");
-  std::string data(static_cast<std::size_t>(size), '\0');
-  in.seekg(0, std::ios::beg);
-  if(size > 0 && !in.read(&data[0], size)) throw Read_error(filename + ": cannot read the file");
-  return data;
+  return read_STL_triangles(data.data(), data.size(), triangles, name);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief the most bytes read from an input whose size is not known in advance (a pipe, a
+/// device such as `/dev/stdin`, a `std::istream`): 256 MiB. A regular file is read whole.
+constexpr std::size_t default_stream_size_limit = std::size_t(256) << 20;
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief reads the whole file `filename` into a string: a regular file whole, another input
+/// (a pipe, a device) up to `limit` bytes.
+/// \throws Read_error if it cannot be opened or read, is a folder, or is not a regular file
+/// and holds more than `limit` bytes.
+inline std::string read_file_contents(const std::string& filename, std::size_t limit = default_stream_size_limit)
+{
+  return Soup_topology::internal::read_file_bounded(filename, limit);
 }
 
 } // namespace IO

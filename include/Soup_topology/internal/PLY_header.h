@@ -1,19 +1,19 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// A check of the header of a PLY file before CGAL's reader sees it.
+// A check of the header of a PLY file before it is read (IO/PLY.h).
 //
-// CGAL 5.5's PLY reader has undefined behaviour on three kinds of headers, all found by
-// fuzz/fuzz_ply: a `property` line before any `element` line (PLY_reader::init() calls back() on
-// an empty vector); a vertex coordinate `x`, `y` or `z` of a type other than float or double
-// (PLY_read_number::assign() dereferences the null result of a dynamic_cast); two properties of
-// one element with the same name (the type is checked on one, the value read from the other).
-// And it pushes one point per announced vertex even when a vertex has no property to read, so
-// "element vertex 988888888888888" with no property allocates until memory runs out; and it
-// allocates the count of a list before reading its elements, so a 32-bit count of 2 billion
-// costs 8 GB: list counts wider than 16 bits (rare: exporters write `list uchar int`) are
-// refused. The header is read here with the same tokenisation as CGAL (std::getline, then >>), and such
-// files are refused.
+// It was written for CGAL 5.5's PLY reader, which has undefined behaviour on three kinds of
+// headers, all found by fuzz/fuzz_ply: a `property` line before any `element` line
+// (PLY_reader::init() calls back() on an empty vector); a vertex coordinate `x`, `y` or `z` of a
+// type other than float or double (PLY_read_number::assign() dereferences the null result of a
+// dynamic_cast); two properties of one element with the same name (the type is checked on one,
+// the value read from the other). And it pushes one point per announced vertex even when a
+// vertex has no property to read, and allocates the count of a list before reading its
+// elements. Our reader has none of these problems, but the refusals are documented
+// (doc/Soup_topology/Bad_input.md) and kept: coordinates of an integer type and list counts
+// wider than 16 bits (rare: exporters write `list uchar int`) are refused. The header is read
+// with the same tokenisation as CGAL's reader (std::getline, then >>).
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_PLY_HEADER_H
 #define SOUP_TOPOLOGY_INTERNAL_PLY_HEADER_H
@@ -29,19 +29,21 @@
 namespace Soup_topology {
 namespace internal {
 
-/// throws `IO::Read_error` naming the line if the header of the PLY file `filename` has a
+/// the most bytes of a PLY header that are looked at: a header longer than this is not checked
+/// further (its end is then refused by CGAL's reader or read as data).
+constexpr std::size_t max_PLY_header_bytes = std::size_t(1) << 20;
+
+/// throws `IO::Read_error` naming the line if the header of the PLY file held in `[data, data + size)` has a
 /// `property` before any `element`, a vertex coordinate that is not a float or a double, or two
 /// properties of the same name in one element, a list count wider than 16 bits, or if its
 /// elements need more bytes than the
 /// file holds (each property of each item takes at least its size in a binary file, 2 bytes in
 /// an ASCII one).
-inline void check_PLY_header(const std::string& filename)
+inline void check_PLY_header(const char* data, std::size_t size, const std::string& filename)
 {
-  std::ifstream in(filename, std::ios::binary);
-  if(!in) throw IO::Read_error(filename + ": cannot open the file for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff file_size = in.tellg();
-  in.seekg(0, std::ios::beg);
+  // Only the header is looked at: at most the first line that says end_header, or the whole.
+  std::istringstream in(std::string(data, size < max_PLY_header_bytes ? size : max_PLY_header_bytes));
+  const double file_size = double(size);
   std::string line, element;
   std::set<std::string> names;
   std::size_t number = 0, count = 0, element_line = 0;
@@ -55,9 +57,9 @@ inline void check_PLY_header(const std::string& filename)
     if(bytes_per_item == 0)
       fail(element_line, "PLY element '" + element + "' announces " + std::to_string(count) + " items with no property");
     bytes_needed += double(count) * bytes_per_item;
-    if(bytes_needed > double(file_size))
+    if(bytes_needed > file_size)
       fail(element_line, "PLY element '" + element + "' announces " + std::to_string(count) +
-                           " items, more than the file of " + std::to_string(file_size) + " bytes can hold");
+                           " items, more than the file of " + std::to_string(size) + " bytes can hold");
   };
   const auto type_size = [](const std::string& t) -> double {
     if(t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
@@ -110,6 +112,7 @@ inline void check_PLY_header(const std::string& filename)
   }
   end_element(); // also without end_header: CGAL reads the elements then
 }
+
 
 } // namespace internal
 } // namespace Soup_topology
