@@ -156,7 +156,7 @@ inline bool same_file(const std::string& a, const std::string& b)
 }
 
 // Checks, without creating anything, that `target` can be written by a rename into its folder:
-// the folder exists and is writable, `target` is not a directory. Throws File_error naming
+// the folder exists and is writable, `target` is a regular file if it exists. Throws File_error naming
 // `what` and `target`.
 inline void check_writable_target(const std::string& target, const std::string& what)
 {
@@ -168,8 +168,11 @@ inline void check_writable_target(const std::string& target, const std::string& 
     throw File_error(target + ": the " + what + " folder does not exist");
   if(::access(folder.c_str(), W_OK | X_OK) != 0)
     throw File_error(target + ": cannot write into the " + what + " folder (" + std::strerror(errno) + ")");
-  if(::stat(target.c_str(), &s) == 0 && S_ISDIR(s.st_mode))
-    throw File_error(target + ": is a directory, not a file");
+  if(::stat(target.c_str(), &s) == 0) {
+    if(S_ISDIR(s.st_mode)) throw File_error(target + ": is a directory, not a file");
+    // A rename would replace a device, a pipe or a socket (or the link to it) by a file.
+    if(!S_ISREG(s.st_mode)) throw File_error(target + ": is not a regular file");
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -234,7 +234,12 @@ void check_repair_paths(const std::string& in, const std::string& out, const std
       throw Usage_error("repair: the report file is the output file ('" + report_file + "'); choose another name");
   }
   tool::check_writable_target(out, "output");
-  if(!report_file.empty()) tool::check_writable_target(report_file, "report");
+  if(!report_file.empty()) {
+    const std::filesystem::path rp(report_file);
+    if(rp.has_parent_path() && !std::filesystem::is_directory(rp.parent_path()))
+      throw Usage_error("repair: the folder of the report file does not exist ('" + report_file + "')");
+    tool::check_writable_target(report_file, "report");
+  }
 }
 
 // Number of pairs of triangles of the oriented, separated soup that intersect other than by a
