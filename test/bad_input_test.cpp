@@ -680,6 +680,7 @@ std::map<std::string, std::pair<std::string, unsigned>> folder_snapshot(const st
     const std::string name = entry.path().filename().string();
     if(entry.is_symlink()) files[name] = {"-> " + fs::read_symlink(entry.path()).string(), 0};
     else if(entry.is_directory()) files[name] = {"<dir>", 0};
+    else if(!entry.is_regular_file()) files[name] = {"<not a regular file>", 0}; // reading a fifo blocks
     else files[name] = {read_whole(entry.path().string()), static_cast<unsigned>(fs::status(entry.path()).permissions())};
   }
   return files;
