@@ -11,14 +11,21 @@
 #include <Soup_topology/IO/OFF.h>
 #include <Soup_topology/IO/STL.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/IO/write_triangle_soup.h>
+#include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/triangle_soup_to_face_graph.h>
 
+#include "bounded_run.h"
 #include "test_utilities.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/IO/OFF.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -27,9 +34,18 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include <csignal>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -650,6 +666,421 @@ TEST_F(BadInputCli, HugeCountsFailFastUnderAMemoryLimit)
     EXPECT_CONTAINS(r.first, "4000000000");
     EXPECT_CONTAINS(r.first, "announces");
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 21: the tool never loses a file, writes what it reports, and refuses what it cannot write.
+
+// Every regular file of a folder: name -> (content, permission bits).
+std::map<std::string, std::pair<std::string, unsigned>> folder_snapshot(const std::string& folder)
+{
+  std::map<std::string, std::pair<std::string, unsigned>> files;
+  for(const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if(entry.is_symlink()) files[name] = {"-> " + fs::read_symlink(entry.path()).string(), 0};
+    else if(entry.is_directory()) files[name] = {"<dir>", 0};
+    else if(!entry.is_regular_file()) files[name] = {"<not a regular file>", 0}; // reading a fifo blocks
+    else files[name] = {read_whole(entry.path().string()), static_cast<unsigned>(fs::status(entry.path()).permissions())};
+  }
+  return files;
+}
+
+unsigned file_mode(const std::string& path)
+{
+  struct stat s;
+  return ::stat(path.c_str(), &s) == 0 ? static_cast<unsigned>(s.st_mode & 07777) : 0u;
+}
+
+std::vector<std::string> temporaries_in(const std::string& folder)
+{
+  std::vector<std::string> names;
+  for(const auto& entry : fs::directory_iterator(folder))
+    if(entry.path().filename().string().rfind(".soup_topology.", 0) == 0) names.push_back(entry.path().string());
+  return names;
+}
+
+// Two interpenetrating tetrahedra as OFF: closed, manifold, self-intersecting.
+const std::string crossing_tetrahedra =
+  "OFF\n8 8 0\n0 0 0\n2 0 0\n0 2 0\n0 0 2\n0.5 0.5 0.5\n2.5 0.5 0.5\n0.5 2.5 0.5\n0.5 0.5 2.5\n"
+  "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 6 5\n3 4 5 7\n3 4 7 6\n3 5 6 7\n";
+const std::string tetrahedron = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+class HostileInput : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    if(cli().empty()) GTEST_SKIP() << "the command-line tool is not built";
+    folder = soup_test::temporary_folder("hostile_cli");
+    input = write_file(folder, "in.off", tetrahedron);
+    output = write_file(folder, "out.off", "previous content\n");
+  }
+  void TearDown() override
+  {
+    if(!folder.empty()) fs::remove_all(folder);
+  }
+  soup_test::Bounded_run run(std::vector<std::string> args)
+  {
+    args.insert(args.begin(), cli());
+    return soup_test::run_bounded(args, 60, 4096);
+  }
+  // Runs the tool and checks that it fails with exit code 2 and `message`, and that no file of
+  // the folder changed (none created, none removed).
+  void expect_refused_unchanged(const std::vector<std::string>& args, const std::string& message)
+  {
+    const auto before = folder_snapshot(folder);
+    const soup_test::Bounded_run r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_CONTAINS(r.err, message);
+    EXPECT_TRUE(folder_snapshot(folder) == before) << "a file of the folder changed: " << r.err;
+  }
+  std::string folder, input, output;
+};
+
+TEST_F(HostileInput, Issue21ReportOntoInput)
+{
+  fs::create_hard_link(input, folder + "/hard.off");
+  fs::create_symlink(input, folder + "/soft.json");
+  for(const std::string& report : {input, folder + "/./in.off", folder + "/hard.off", folder + "/soft.json"})
+    expect_refused_unchanged({"repair", input, "-o", output, "--report", report}, "the report file is the input file");
+}
+
+TEST_F(HostileInput, Issue21ReportOntoOutput)
+{
+  fs::create_symlink(output, folder + "/soft.json");
+  for(const std::string& report : {output, folder + "/./out.off", folder + "/soft.json"})
+    expect_refused_unchanged({"repair", input, "-o", output, "--report", report}, "the report file is the output file");
+  // The same new file given twice: neither exists yet.
+  expect_refused_unchanged({"repair", input, "-o", folder + "/new.off", "--report", folder + "/sub/../new.off"},
+                           "the report file is the output file");
+  fs::create_directory(folder + "/sub");
+  expect_refused_unchanged({"repair", input, "-o", folder + "/new.off", "--report", folder + "/sub/../new.off"},
+                           "the report file is the output file");
+}
+
+TEST_F(HostileInput, OutputOntoInputThroughLinks)
+{
+  fs::create_hard_link(input, folder + "/hard.off");
+  fs::create_symlink(input, folder + "/soft.off");
+  for(const std::string& out : {folder + "/hard.off", folder + "/soft.off"})
+    expect_refused_unchanged({"repair", input, "-o", out}, "the output file is the input file");
+}
+
+TEST_F(HostileInput, Issue21UnwritableReportLeavesOutputUntouched)
+{
+  // The report is a directory: refused before the output is written.
+  fs::create_directory(folder + "/report.json");
+  expect_refused_unchanged({"repair", input, "-o", output, "--report", folder + "/report.json"},
+                           "report.json: is a directory");
+  // Not a regular file: a rename would replace it (a device such as /dev/null, never used here:
+  // a tool without the check would replace the system's device node).
+  const std::string fifo = folder + "/fifo.off";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_refused_unchanged({"repair", input, "-o", output, "--report", fifo}, "fifo.off: is not a regular file");
+  expect_refused_unchanged({"repair", input, "-o", fifo}, "fifo.off: is not a regular file");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+TEST_F(HostileInput, Issue21OutputCheckedBeforeReading)
+{
+  // An input that fails only when read: the output problem must be the one reported.
+  const std::string broken = write_file(folder, "broken.stl", "");
+  fs::create_directory(folder + "/out_dir.off");
+  expect_refused_unchanged({"repair", broken, "-o", folder + "/out_dir.off"}, "out_dir.off: is a directory");
+  expect_refused_unchanged({"repair", broken, "-o", folder + "/missing/out.off"}, "the output folder does not exist");
+  expect_refused_unchanged({"repair", broken, "-o", output, "--report", folder + "/missing/r.json"},
+                           "the folder of the report file does not exist");
+}
+
+TEST_F(HostileInput, Issue21PermissionsKept)
+{
+  const std::string report = write_file(folder, "r.json", "{}\n");
+  fs::permissions(output, fs::perms::owner_read | fs::perms::owner_write);
+  fs::permissions(report, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  soup_test::Bounded_run r = run({"repair", input, "-o", output, "--report", report});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(file_mode(output), 0600u);
+  EXPECT_EQ(file_mode(report), 0640u);
+  EXPECT_NE(read_whole(output), "previous content\n");
+  // A new file gets the mode of the umask, as any program's new file.
+  const mode_t mask = umask(0);
+  umask(mask);
+  r = run({"repair", input, "-o", folder + "/new.ply", "--report", folder + "/new.json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(file_mode(folder + "/new.ply"), 0666u & ~static_cast<unsigned>(mask));
+  EXPECT_EQ(file_mode(folder + "/new.json"), 0666u & ~static_cast<unsigned>(mask));
+  EXPECT_TRUE(temporaries_in(folder).empty());
+}
+
+TEST_F(HostileInput, Issue21FailedStandardOutputIsAnError)
+{
+  for(const std::string& options : {std::string("--json"), std::string("")}) {
+    const auto r = soup_test::run_command("'" + cli() + "' repair '" + input + "' -o '" + output + "' " + options +
+                                          " 2>&1 > /dev/full");
+    EXPECT_EQ(r.second, 2) << r.first;
+    EXPECT_CONTAINS(r.first, "cannot write to standard output");
+  }
+  const auto r = soup_test::run_command("'" + cli() + "' stats '" + input + "' --json 2>&1 > /dev/full");
+  EXPECT_EQ(r.second, 2) << r.first;
+  EXPECT_CONTAINS(r.first, "cannot write to standard output");
+}
+
+TEST_F(HostileInput, Issue21SubnormalTolerance)
+{
+  const soup_test::Bounded_run r = run({"repair", input, "-o", output, "--tolerance", "1e-320", "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_CONTAINS(r.out, "\"tolerance\": 1e-320");
+}
+
+TEST_F(HostileInput, Issue21StlRoundingIsRefused)
+{
+  const std::string stl = write_file(folder, "out.stl", "previous content\n");
+  const std::string huge = write_file(folder, "huge.off", "OFF\n3 1 0\n0 0 0\n1e308 0 0\n0 1 0\n3 0 1 2\n");
+  expect_refused_unchanged({"repair", huge, "-o", stl}, "point 1 (1e+308, 0, 0) becomes infinite in float");
+  expect_refused_unchanged({"repair", huge, "-o", stl}, "write .off, .obj or .ply");
+  // 0.1 apart near 5e6: the float spacing there is 0.5.
+  const std::string near = write_file(folder, "near.off", "OFF\n4 2 0\n5000000 0 0\n5000000.1 0 0\n5000000.1 1 0\n"
+                                                          "5000000 0 1\n3 0 1 2\n3 0 2 3\n");
+  expect_refused_unchanged({"repair", near, "-o", stl}, "points 0 and 1");
+  expect_refused_unchanged({"repair", near, "-o", stl}, "become the same point in float");
+  // A thin triangle whose apex rounds onto its base.
+  const std::string thin = write_file(folder, "thin.off", "OFF\n3 1 0\n0 5000000 0\n1 5000000 0\n0.5 5000000.1 0\n3 0 1 2\n");
+  expect_refused_unchanged({"repair", thin, "-o", stl}, "triangle 0 (points 0, 1, 2) becomes degenerate in float");
+  // The same files as OFF keep their doubles.
+  for(const std::string& in : {huge, near, thin}) {
+    const soup_test::Bounded_run r = run({"repair", in, "-o", output});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::vector<Point> original, written;
+    std::vector<std::vector<std::size_t>> original_faces, written_faces;
+    ST::IO::read_OFF_polygons(read_whole(in), original, original_faces, in);
+    ST::IO::read_OFF_polygons(read_whole(output), written, written_faces, output);
+    EXPECT_EQ(original, written) << in;
+  }
+}
+
+TEST_F(HostileInput, Issue21ReportDescribesTheWrittenFile)
+{
+  // nm_cubes: the repaired soup is closed with 2 non-manifold edges; the file written separates
+  // them by duplicating points, and has border edges and two components.
+  struct Expected
+  {
+    const char* file;
+    long long border_edges, components, soup_non_manifold_edges;
+  };
+  for(const Expected& e : {Expected{"nm_cubes.off", 8, 2, 2}, Expected{"non_manifold.off", 4, 1, 1},
+                           Expected{"non_manifold2.off", 4, 1, 1}}) {
+    SCOPED_TRACE(e.file);
+    const std::string in = soup_test::data_file(std::string("cgal_repair/data_stitching/") + e.file);
+    const soup_test::Bounded_run r = run({"repair", in, "-o", output, "--json", "--check"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_FALSE(soup_test::json_bool(r.out, "closed"));
+    EXPECT_EQ(soup_test::json_integer(r.out, "border_edges"), e.border_edges);
+    EXPECT_EQ(soup_test::json_integer(r.out, "components"), e.components);
+    EXPECT_EQ(soup_test::json_integer(r.out, "non_manifold_edges"), 0);
+    EXPECT_EQ(soup_test::json_integer(r.out, "soup_non_manifold_edges"), e.soup_non_manifold_edges);
+    EXPECT_TRUE(soup_test::json_bool(r.out, "soup_closed"));
+    // The file as written, read without welding: the same counts.
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> faces;
+    ST::IO::read_OFF_polygons(read_whole(output), points, faces, output);
+    std::vector<Triangle> triangles;
+    for(const auto& f : faces) triangles.push_back({f[0], f[1], f[2]});
+    EXPECT_EQ(static_cast<long long>(soup_test::count_border_and_non_manifold_edges(triangles).first), e.border_edges);
+    EXPECT_EQ(soup_test::json_integer(r.out, "output_vertices"), static_cast<long long>(points.size()));
+    EXPECT_EQ(soup_test::json_integer(r.out, "vertices"), static_cast<long long>(points.size()));
+  }
+}
+
+TEST_F(HostileInput, Issue21SelfIntersections)
+{
+  const std::string crossing = write_file(folder, "crossing.off", crossing_tetrahedra);
+  soup_test::Bounded_run r = run({"repair", crossing, "-o", output, "--json", "--check"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "self_intersecting_pairs"), -1) << "counted without the option";
+  r = run({"repair", crossing, "-o", output, "--json", "--check", "--self-intersections"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_GT(soup_test::json_integer(r.out, "self_intersecting_pairs"), 0);
+  EXPECT_TRUE(soup_test::json_bool(r.out, "closed"));
+  r = run({"repair", input, "-o", output, "--json", "--check", "--self-intersections"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "self_intersecting_pairs"), 0);
+}
+
+// A binary STL grid of about 1M triangles: long enough to read, repair and write that a signal
+// can be sent while the output is being written.
+std::string million_triangle_stl(const std::string& folder)
+{
+  const int n = 710;
+  std::string data(80, ' ');
+  const std::uint32_t count = static_cast<std::uint32_t>(2 * (n - 1) * (n - 1));
+  data.append(reinterpret_cast<const char*>(&count), 4);
+  data.reserve(84 + 50 * std::size_t(count));
+  auto z = [](int i, int j) { return static_cast<float>((i * j) % 7) * 0.25f; };
+  for(int i = 0; i + 1 < n; ++i)
+    for(int j = 0; j + 1 < n; ++j) {
+      const float a[3] = {float(i), float(j), z(i, j)}, b[3] = {float(i + 1), float(j), z(i + 1, j)};
+      const float c[3] = {float(i + 1), float(j + 1), z(i + 1, j + 1)}, d[3] = {float(i), float(j + 1), z(i, j + 1)};
+      const float* corners[2][3] = {{a, b, c}, {a, c, d}};
+      for(const auto& t : corners) {
+        const float normal[3] = {0, 0, 0};
+        data.append(reinterpret_cast<const char*>(normal), sizeof normal);
+        for(const float* p : t) data.append(reinterpret_cast<const char*>(p), 3 * sizeof(float));
+        data.append(2, '\0');
+      }
+    }
+  return write_file(folder, "grid.stl", data);
+}
+
+TEST_F(HostileInput, Issue21SignalsLeaveNoTemporaryFile)
+{
+  const std::string grid = million_triangle_stl(folder);
+  fs::permissions(output, fs::perms::owner_read | fs::perms::owner_write);
+  const std::string report = folder + "/r.json";
+  for(int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+    SCOPED_TRACE(signal_number);
+    const auto before = folder_snapshot(folder);
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if(pid == 0) {
+      const int null = ::open("/dev/null", O_WRONLY);
+      dup2(null, 1);
+      dup2(null, 2);
+      const std::string program = cli();
+      execl(program.c_str(), program.c_str(), "repair", grid.c_str(), "-o", output.c_str(), "--report", report.c_str(),
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    // Wait for the temporary output file to appear, then send the signal while it is written.
+    std::vector<std::string> seen;
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    bool exited = false;
+    while(seen.empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+      seen = temporaries_in(folder);
+      if(!seen.empty()) break;
+      if(waitpid(pid, &status, WNOHANG) == pid) { exited = true; break; }
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    ASSERT_FALSE(exited) << "the tool finished before its temporary file was seen";
+    ASSERT_FALSE(seen.empty()) << "no temporary file appeared";
+    // Private while written.
+    const unsigned mode = file_mode(seen.front());
+    kill(pid, signal_number);
+    waitpid(pid, &status, 0);
+    EXPECT_EQ(mode & 077u, 0u) << "the temporary file is readable by others: " << std::oct << mode;
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal_number) << "status " << status;
+    EXPECT_TRUE(temporaries_in(folder).empty()) << "a temporary file was left behind";
+    EXPECT_TRUE(folder_snapshot(folder) == before) << "a file of the folder changed";
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 21: IO::write_triangle_soup
+
+std::vector<std::array<std::size_t, 3>> rotated_sorted(std::vector<std::array<std::size_t, 3>> triangles)
+{
+  for(auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+std::vector<Triangle> as_triangles(const std::vector<std::vector<std::size_t>>& faces)
+{
+  std::vector<Triangle> triangles;
+  for(const auto& f : faces) {
+    EXPECT_EQ(f.size(), 3u);
+    if(f.size() == 3) triangles.push_back({f[0], f[1], f[2]});
+  }
+  return triangles;
+}
+
+TEST(WriteTriangleSoup, Issue21ReadsBackTheSamePointsAndTriangles)
+{
+  // Doubles with all 53 bits used, of every magnitude: the text formats must keep them all.
+  std::mt19937_64 random(21);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-300, 300);
+  std::vector<Point> points;
+  for(int i = 0; i < 300; ++i)
+    points.emplace_back(std::ldexp(mantissa(random), exponent(random)), mantissa(random) * 1e6, std::ldexp(mantissa(random), -1070 + i % 3));
+  std::vector<Triangle> triangles;
+  for(std::size_t i = 0; i + 2 < points.size(); i += 2) triangles.push_back({i, i + 2, i + 1});
+  const std::string folder = soup_test::temporary_folder("write_soup");
+  for(const std::string name : {"a.off", "a.OBJ", "a.ply", "ascii.ply"}) {
+    SCOPED_TRACE(name);
+    const std::string path = folder + "/" + name;
+    if(name == "ascii.ply") ST::IO::write_triangle_soup(path, points, triangles, CGAL::parameters::use_binary_mode(false));
+    else ST::IO::write_triangle_soup(path, points, triangles);
+    std::vector<Point> read_points;
+    std::vector<std::vector<std::size_t>> faces;
+    if(name == "a.off") ST::IO::read_OFF_polygons(read_whole(path), read_points, faces, path);
+    else {
+      const std::string copy = folder + "/copy." + (name == "a.OBJ" ? "obj" : "ply");
+      fs::copy_file(path, copy, fs::copy_options::overwrite_existing);
+      ASSERT_TRUE(CGAL::IO::read_polygon_soup(copy, read_points, faces));
+    }
+    EXPECT_TRUE(read_points == points);
+    EXPECT_TRUE(as_triangles(faces) == triangles);
+  }
+  // STL: float coordinates come back exactly, corner by corner.
+  std::vector<Point> float_points;
+  for(const Point& p : points)
+    float_points.emplace_back(static_cast<float>(p.x() / 1e300), static_cast<float>(p.y()), static_cast<float>(p.z() * 1e300));
+  ST::IO::write_triangle_soup(folder + "/a.stl", float_points, triangles);
+  std::vector<std::array<Point, 3>> corners;
+  ST::IO::read_STL_triangles(read_whole(folder + "/a.stl"), corners, "a.stl");
+  ASSERT_EQ(corners.size(), triangles.size());
+  for(std::size_t t = 0; t < triangles.size(); ++t)
+    for(int k = 0; k < 3; ++k) EXPECT_EQ(corners[t][k], float_points[triangles[t][k]]);
+  // Errors name the file.
+  try {
+    ST::IO::write_triangle_soup(folder + "/missing/a.off", points, triangles);
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Write_error& e) {
+    EXPECT_CONTAINS(e.what(), folder + "/missing/a.off: cannot open the file for writing");
+  }
+  try {
+    ST::IO::write_triangle_soup(folder + "/b.stl", points, triangles);
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Write_error& e) {
+    EXPECT_CONTAINS(e.what(), folder + "/b.stl: point ");
+    EXPECT_CONTAINS(e.what(), "becomes infinite in float");
+  }
+  EXPECT_FALSE(fs::exists(folder + "/b.stl"));
+  fs::remove_all(folder);
+}
+
+TEST(WriteTriangleSoup, Issue21SameMeshAsTheFaceGraphWriter)
+{
+  // The tool used to write through a Surface_mesh and CGAL's writer; the soup written directly
+  // must be the same mesh: the same points in the same order, the same oriented triangles.
+  struct Case
+  {
+    const char* file;
+    double tolerance;
+  };
+  for(const Case& c : {Case{"cgal_repair/pig.stl.xz", 0.3}, Case{"cad/ALSTOM_TEST4.off", 0.0},
+                       Case{"cgal_repair/data_stitching/nm_cubes.off", 0.0}}) {
+    SCOPED_TRACE(c.file);
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    soup_test::read_data_mesh(c.file, points, triangles);
+    ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(c.tolerance));
+    CGAL::Surface_mesh<Point> mesh;
+    ST::triangle_soup_to_face_graph(points, triangles, mesh);
+    std::ostringstream theirs;
+    ASSERT_TRUE(CGAL::IO::write_OFF(theirs, mesh, CGAL::parameters::stream_precision(17)));
+    ST::orient_triangle_soup(points, triangles);
+    std::ostringstream ours;
+    ST::IO::write_OFF_triangle_soup(ours, points, triangles);
+    std::vector<Point> our_points, their_points;
+    std::vector<std::vector<std::size_t>> our_faces, their_faces;
+    ST::IO::read_OFF_polygons(ours.str(), our_points, our_faces, "ours");
+    ST::IO::read_OFF_polygons(theirs.str(), their_points, their_faces, "theirs");
+    EXPECT_EQ(our_points.size(), their_points.size());
+    EXPECT_TRUE(our_points == their_points);
+    EXPECT_TRUE(rotated_sorted(as_triangles(our_faces)) == rotated_sorted(as_triangles(their_faces)));
   }
 }
 

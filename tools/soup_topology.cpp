@@ -4,19 +4,26 @@
 // soup_topology: the command-line face of the library.
 //   soup_topology stats FILE [--json]
 //   soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]
-//                        [--json] [--check] [--no-t-junctions]
-// Exit codes: 0 success, 1 `--check` found the result not closed or not manifold,
-//             2 bad input or arguments (message on stderr).
+//                        [--json] [--check] [--no-t-junctions] [--self-intersections]
+// Exit codes: 0 success, 1 `--check` found the written result not closed, not manifold or (with
+//             --self-intersections) self-intersecting, 2 bad input, arguments or a file that
+//             cannot be written (message on stderr).
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
-#include <Soup_topology/triangle_soup_to_face_graph.h>
+#include <Soup_topology/IO/write_triangle_soup.h>
+#include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
 
+#include "output_files.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+
+#include <boost/iterator/function_output_iterator.hpp>
 
 #include <cerrno>
 #include <charconv>
@@ -45,6 +52,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Triangle = std::array<std::size_t, 3>;
 namespace ST = Soup_topology;
+namespace tool = soup_topology_tool;
 
 struct Usage_error : std::runtime_error
 {
@@ -57,14 +65,23 @@ const char* usage_text =
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]\n"
-  "                       [--json] [--check] [--no-t-junctions]\n"
+  "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
-  "      component and writes OUT (.off, .obj, .ply or .stl) atomically. Prints the report\n"
-  "      (--json: one JSON object); --report also writes it to FILE.json.\n"
-  "      --check exits with code 1 when the result is not closed or not manifold.\n"
-  "exit codes: 0 success, 1 --check failed, 2 bad input or arguments\n";
+  "      component, separates non-manifold vertices and edges by duplicating their points, and\n"
+  "      writes OUT (.off, .obj, .ply binary, or .stl binary: refused if float rounding would\n"
+  "      change the mesh). Prints the report (--json: one JSON object); --report also writes it\n"
+  "      to FILE.json. The report's counts (closed, border_edges, ...) describe the file written;\n"
+  "      soup_* fields describe the repaired soup before the separation.\n"
+  "      --self-intersections counts the pairs of written triangles that intersect.\n"
+  "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
+  "      (with --self-intersections) self-intersecting.\n"
+  "      OUT and the report are written completely to private temporary files, then renamed\n"
+  "      over their targets (keeping an existing file's permissions); on an error or a signal\n"
+  "      nothing is replaced and no temporary file is left. OUT and the report must differ\n"
+  "      from IN and from each other.\n"
+"exit codes: 0 success, 1 --check failed, 2 bad input or arguments, or an output that cannot be written\n";
 
 // An ordered list of "key": value pairs, printed as one JSON object or as aligned text.
 class Report
@@ -135,6 +152,18 @@ void add_statistics(Report& r, const ST::Soup_statistics& s, std::size_t collaps
   r.add("zero_area_triangles" + suffix, s.zero_area_triangles);
 }
 
+// Prints `text` on standard output and checks that it got there (a full disk, a closed pipe).
+void print(const std::string& text)
+{
+  std::cout << text;
+  std::cout.flush();
+  if(!std::cout) {
+    const int e = errno;
+    throw std::runtime_error(std::string("cannot write to standard output (") +
+                             (e ? std::strerror(e) : "write failed") + ")");
+  }
+}
+
 int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
@@ -160,8 +189,7 @@ int run_stats(const std::vector<std::string>& args)
   r.add("input_polygons", read.input_polygons);
   r.add("exact_duplicates", read.exact_duplicates);
   add_statistics(r, s, read.collapsed_triangles);
-  if(json) std::cout << r.json() << "\n";
-  else std::cout << "soup_topology stats\n" << r.text();
+  print(json ? r.json() + "\n" : "soup_topology stats\n" + r.text());
   return 0;
 }
 
@@ -170,43 +198,12 @@ double parse_number(const std::string& option, const std::string& text)
   char* end = nullptr;
   errno = 0;
   const double x = std::strtod(text.c_str(), &end);
-  if(text.empty() || *end != '\0' || errno == ERANGE)
+  // ERANGE also reports an underflow: a subnormal (1e-320) or zero result is a valid tolerance,
+  // an overflow (1e999) is not a number the tool can use.
+  if(text.empty() || *end != '\0' || (errno == ERANGE && std::abs(x) > 1))
     throw Usage_error(option + ": '" + text + "' is not a number");
   if(!std::isfinite(x) || x < 0) throw Usage_error(option + ": the tolerance must be a finite number >= 0, got '" + text + "'");
   return x;
-}
-
-// Writes through `write` into a temporary file beside `target` (same extension, so that CGAL
-// picks the same format), then renames it over `target`: an error never leaves a half-written
-// file, and an existing `target` is replaced only by a complete one.
-template <class Writer>
-void write_atomically(const std::string& target, const Writer& write)
-{
-  namespace fs = std::filesystem;
-  const fs::path path(target);
-  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  if(!fs::is_directory(folder)) throw std::runtime_error(target + ": the output folder does not exist");
-  const fs::path temporary = folder / (".soup_topology." + std::to_string(std::random_device{}()) + ".tmp" +
-                                       path.extension().string());
-  bool ok = false;
-  try {
-    ok = write(temporary.string());
-  } catch(...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
-  std::error_code ec;
-  if(!ok || !fs::exists(temporary)) {
-    fs::remove(temporary, ec);
-    throw std::runtime_error(target + ": cannot write the output file");
-  }
-  fs::rename(temporary, path, ec);
-  if(ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error(target + ": cannot write the output file (" + ec.message() + ")");
-  }
 }
 
 class Progress
@@ -224,10 +221,45 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
+// Checks the paths of a repair before anything is read: OUT and the report are neither IN nor
+// each other, their folders exist and can be written, neither is a directory.
+void check_repair_paths(const std::string& in, const std::string& out, const std::string& report_file)
+{
+  if(tool::same_file(in, out))
+    throw Usage_error("repair: the output file is the input file ('" + out + "'); choose another name");
+  if(!report_file.empty()) {
+    if(tool::same_file(in, report_file))
+      throw Usage_error("repair: the report file is the input file ('" + report_file + "'); choose another name");
+    if(tool::same_file(out, report_file))
+      throw Usage_error("repair: the report file is the output file ('" + report_file + "'); choose another name");
+  }
+  tool::check_writable_target(out, "output");
+  if(!report_file.empty()) {
+    const std::filesystem::path rp(report_file);
+    if(rp.has_parent_path() && !std::filesystem::is_directory(rp.parent_path()))
+      throw Usage_error("repair: the folder of the report file does not exist ('" + report_file + "')");
+    tool::check_writable_target(report_file, "report");
+  }
+}
+
+// Number of pairs of triangles of the oriented, separated soup that intersect other than by a
+// shared vertex or edge.
+std::size_t count_self_intersecting_pairs(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  if(!PMP::is_polygon_soup_a_polygon_mesh(triangles))
+    throw std::logic_error("the oriented soup is not a polygon mesh");
+  CGAL::Surface_mesh<Point> mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
+  std::size_t pairs = 0;
+  PMP::self_intersections(mesh, boost::make_function_output_iterator([&pairs](const auto&) { ++pairs; }));
+  return pairs;
+}
+
 int run_repair(const std::vector<std::string>& args)
 {
   std::string in, out, report_file;
-  bool json = false, check = false, split = true;
+  bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   for(std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -242,6 +274,7 @@ int run_repair(const std::vector<std::string>& args)
     else if(a == "--json") json = true;
     else if(a == "--check") check = true;
     else if(a == "--no-t-junctions") split = false;
+    else if(a == "--self-intersections") self_intersections = true;
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(in.empty()) in = a;
     else throw Usage_error("repair: more than one input file ('" + in + "' and '" + a + "')");
@@ -252,16 +285,8 @@ int run_repair(const std::vector<std::string>& args)
   const std::string out_format = ST::IO::file_extension(out);
   if(out_format != "off" && out_format != "obj" && out_format != "ply" && out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + out_format + "' (expected .off, .obj, .ply or .stl)");
-  if(!report_file.empty()) {
-    const std::filesystem::path rp(report_file);
-    if(rp.has_parent_path() && !std::filesystem::is_directory(rp.parent_path()))
-      throw Usage_error("repair: the folder of the report file does not exist ('" + report_file + "')");
-  }
-  {
-    std::error_code ec;
-    if(std::filesystem::exists(out) && std::filesystem::equivalent(in, out, ec))
-      throw Usage_error("repair: the output file is the input file ('" + out + "'); choose another name");
-  }
+  check_repair_paths(in, out, report_file);
+  tool::install_signal_handlers();
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
@@ -279,16 +304,19 @@ int run_repair(const std::vector<std::string>& args)
   else
     r = ST::reconstruct_topology(points, triangles, ST::parameters::do_split_t_junctions(split));
   progress_on("repaired the soup");
-  const ST::Adjacency_tables tables(triangles, points.size());
-  const ST::Soup_statistics s = ST::compute_statistics(points, tables);
+  // The repaired soup, before the separation of what cannot be manifold.
+  const ST::Soup_statistics soup = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
 
-  CGAL::Surface_mesh<Point> mesh;
-  const ST::Face_graph_output_report fg = ST::triangle_soup_to_face_graph(points, triangles, mesh);
-  progress_on("oriented and built the mesh");
-  write_atomically(out, [&](const std::string& file) {
-    return CGAL::IO::write_polygon_mesh(file, mesh, CGAL::parameters::stream_precision(17));
-  });
-  progress_on("wrote " + out);
+  // What is written: repeated triangles left out, components oriented, non-manifold vertices
+  // and edges separated by duplicated points. The report's statistics describe this soup.
+  const ST::Orientation_report orientation = ST::orient_triangle_soup(points, triangles);
+  const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
+  progress_on("oriented the soup");
+  std::optional<std::size_t> intersecting;
+  if(self_intersections) {
+    intersecting = count_self_intersecting_pairs(points, triangles);
+    progress_on("counted self-intersections");
+  }
 
   Report rep;
   rep.add_string("input", in);
@@ -299,6 +327,14 @@ int run_repair(const std::vector<std::string>& args)
   rep.add("exact_duplicates", read.exact_duplicates);
   rep.add("tolerance", r.tolerance);
   add_statistics(rep, s, 0);
+  if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
+  rep.add("soup_vertices", soup.vertices);
+  rep.add("soup_triangles", soup.triangles);
+  rep.add("soup_border_edges", soup.border_edges);
+  rep.add("soup_non_manifold_edges", soup.non_manifold_edges);
+  rep.add("soup_non_manifold_vertices", soup.non_manifold_vertices);
+  rep.add("soup_components", soup.components);
+  rep.add("soup_closed", soup.closed);
   rep.add("border_edges_before", r.border_edges_before);
   rep.add("border_edges_after", r.border_edges_after);
   rep.add("non_manifold_edges_before", r.non_manifold_edges_before);
@@ -315,21 +351,36 @@ int run_repair(const std::vector<std::string>& args)
   rep.add("collapsed_triangles_removed", read.collapsed_triangles);
   rep.add("removed_points", r.removed_points);
   rep.add("max_displacement", r.max_displacement);
-  rep.add("duplicate_triangles_removed", fg.duplicate_triangles);
-  rep.add("orientation_flips", fg.orientation_flips);
-  rep.add("duplicated_points", fg.duplicated_points);
-  rep.add("output_vertices", static_cast<std::size_t>(num_vertices(mesh)));
-  rep.add("output_triangles", static_cast<std::size_t>(num_faces(mesh)));
-  if(!report_file.empty())
-    write_atomically(report_file, [&](const std::string& file) {
-      std::ofstream f(file);
-      f << rep.json() << "\n";
-      return static_cast<bool>(f);
-    });
-  if(json) std::cout << rep.json() << "\n";
-  else std::cout << "soup_topology repair\n" << rep.text();
-  if(check && (!s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0)) return 1;
-  return 0;
+  rep.add("duplicate_triangles_removed", orientation.duplicate_triangles);
+  rep.add("orientation_flips", orientation.orientation_flips);
+  rep.add("duplicated_points", orientation.duplicated_points);
+  rep.add("output_vertices", points.size());
+  rep.add("output_triangles", triangles.size());
+
+  // Every output complete in its temporary file before any is renamed: a report that cannot be
+  // written leaves OUT as it was.
+  {
+    tool::Temporary_output mesh_file(out);
+    try {
+      ST::IO::write_triangle_soup(mesh_file.stream(), out_format, points, triangles);
+    } catch(const ST::IO::Write_error& e) {
+      throw tool::File_error(out + ": " + e.what());
+    }
+    mesh_file.finish();
+    progress_on("wrote " + out);
+    std::optional<tool::Temporary_output> report_output;
+    if(!report_file.empty()) {
+      report_output.emplace(report_file);
+      report_output->stream() << rep.json() << "\n";
+      report_output->finish();
+    }
+    mesh_file.commit();
+    if(report_output) report_output->commit();
+  }
+  print(json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
+  const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
+                      (intersecting && *intersecting > 0);
+  return check && failed ? 1 : 0;
 }
 
 } // namespace

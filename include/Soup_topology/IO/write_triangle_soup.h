@@ -1,0 +1,488 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Writing an indexed triangle soup (points and index triples) as OFF, OBJ, PLY or binary STL,
+// without building a mesh first: what is written is exactly the soup, in its order.
+//
+// Why not a CGAL mesh and `CGAL::IO::write_polygon_mesh()`: the soup is already what a file
+// holds (a point list and index triples), a mesh of 1M triangles costs time and memory only to
+// be walked back into the same lists, and CGAL's STL writer rounds to float without saying
+// what the rounding did. Here STL output is refused when float rounding would make a coordinate
+// infinite, merge two distinct points, or make a triangle degenerate or flip.
+
+#ifndef SOUP_TOPOLOGY_IO_WRITE_TRIANGLE_SOUP_H
+#define SOUP_TOPOLOGY_IO_WRITE_TRIANGLE_SOUP_H
+
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace Soup_topology {
+namespace IO {
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief the exception thrown by the writers when a file cannot be written (cannot be opened,
+/// a failed write) or cannot represent the soup (float rounding in STL, indices too large for
+/// the format). The message starts with the file name when the writer was given one.
+class Write_error : public std::runtime_error
+{
+public:
+  explicit Write_error(const std::string& what) : std::runtime_error(what) {}
+};
+
+namespace internal {
+
+// The three coordinates of point `p` as doubles.
+template <class Point>
+std::array<double, 3> write_coordinates(const Point& p)
+{
+  return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+// The soup as index triples (std::size_t), checked: triangles of three distinct in-range indices.
+template <class TriangleRange>
+std::vector<std::array<std::size_t, 3>> write_triangles(const TriangleRange& triangles, std::size_t number_of_points)
+{
+  Soup_topology::internal::check_triangle_soup(triangles, number_of_points);
+  std::vector<std::array<std::size_t, 3>> out;
+  out.reserve(static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles))));
+  std::size_t face_id = 0;
+  for(const auto& f : triangles) {
+    out.push_back({Soup_topology::internal::corner(f, 0, face_id), Soup_topology::internal::corner(f, 1, face_id),
+                   Soup_topology::internal::corner(f, 2, face_id)});
+    ++face_id;
+  }
+  return out;
+}
+
+template <class PointRange>
+void check_finite_for_writing(const PointRange& points)
+{
+  std::size_t i = 0;
+  for(const auto& p : points) {
+    for(double c : write_coordinates(p))
+      if(!std::isfinite(c)) throw Write_error("point " + std::to_string(i) + " has a non-finite coordinate");
+    ++i;
+  }
+}
+
+// Text buffer with the number formats of the text writers: doubles with 17 significant
+// digits (enough to read back the same double), integers in decimal.
+class Text_line
+{
+public:
+  Text_line& operator<<(const char* s) { text_.append(s); return *this; }
+  Text_line& operator<<(char c) { text_.push_back(c); return *this; }
+  Text_line& integer(std::size_t v)
+  {
+    char buffer[24];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+    text_.append(buffer, end);
+    return *this;
+  }
+  Text_line& real(double v, int precision)
+  {
+    char buffer[64];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, precision).ptr;
+    text_.append(buffer, end);
+    return *this;
+  }
+  // Sends the text to `os` once it is large, so that a 1M-triangle file is not held twice.
+  void flush_to(std::ostream& os, bool force = false)
+  {
+    if(force || text_.size() > (1u << 16)) {
+      os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+      text_.clear();
+    }
+  }
+
+private:
+  std::string text_;
+};
+
+inline void check_stream(const std::ostream& os)
+{
+  if(!os) throw Write_error("the write failed");
+}
+
+constexpr bool big_endian_host()
+{
+#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__)
+  return __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__;
+#else
+  return false;
+#endif
+}
+
+template <class T>
+void put_little_endian(std::string& out, T value)
+{
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if(big_endian_host()) std::reverse(bytes, bytes + sizeof(T));
+  out.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief checks that writing the soup as STL, whose coordinates are 32-bit floats, keeps it:
+/// throws `Write_error` naming the first point whose coordinate rounds to infinity, the first two
+/// distinct points that round to the same float point, or the first triangle that becomes
+/// degenerate (collinear corners) or flips (its normal turns by more than 90 degrees) once its
+/// corners are rounded. The message suggests OFF or PLY, which keep doubles.
+///
+/// Only points used by a triangle are checked. Triangles already degenerate before rounding are
+/// not refused, since rounding did not make them so.
+///
+/// \tparam PointRange a random-access range of `Point_3`
+/// \tparam TriangleRange a range of faces of 3 indices
+template <class PointRange, class TriangleRange>
+void check_STL_float_rounding(const PointRange& points, const TriangleRange& triangles)
+{
+  using Point = typename PointRange::value_type;
+  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Float_point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+  const std::vector<std::array<std::size_t, 3>> tris = internal::write_triangles(triangles, points.size());
+  const std::string advice = "; STL stores coordinates as 32-bit floats: write .off, .obj or .ply to keep them as doubles";
+  auto describe = [](const std::array<double, 3>& c) {
+    internal::Text_line t;
+    t << '(';
+    t.real(c[0], 17) << ", ";
+    t.real(c[1], 17) << ", ";
+    t.real(c[2], 17) << ')';
+    std::ostringstream s;
+    t.flush_to(s, true);
+    return s.str();
+  };
+  std::vector<char> used(points.size(), 0);
+  for(const auto& t : tris) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  std::vector<Float_point> rounded(points.size());
+  std::vector<std::size_t> order;
+  const double float_max = static_cast<double>(std::numeric_limits<float>::max());
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    if(!used[i]) continue;
+    const std::array<double, 3> c = internal::write_coordinates(points[i]);
+    std::array<double, 3> r;
+    for(int k = 0; k < 3; ++k) {
+      // Converting a double outside the float range is undefined behaviour: test first.
+      if(!std::isfinite(c[k]) || std::abs(c[k]) > float_max)
+        throw Write_error("point " + std::to_string(i) + " " + describe(c) + " becomes infinite in float" + advice);
+      r[k] = static_cast<double>(static_cast<float>(c[k]));
+    }
+    rounded[i] = Float_point(r[0], r[1], r[2]);
+    order.push_back(i);
+  }
+  // Distinct points that become equal: a reader welds them, and the mesh read back changes.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rounded[a] < rounded[b] || (rounded[a] == rounded[b] && a < b);
+  });
+  for(std::size_t k = 1; k < order.size(); ++k) {
+    const std::size_t a = order[k - 1], b = order[k];
+    if(rounded[a] == rounded[b] && internal::write_coordinates(points[a]) != internal::write_coordinates(points[b]))
+      throw Write_error("points " + std::to_string(std::min(a, b)) + " and " + std::to_string(std::max(a, b)) + " " +
+                        describe(internal::write_coordinates(points[a])) + " and " +
+                        describe(internal::write_coordinates(points[b])) + " become the same point in float" + advice);
+  }
+  auto normal = [](const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c) {
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  };
+  auto coordinates = [](const Float_point& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  typename Kernel::Collinear_3 collinear = Kernel().collinear_3_object();
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const auto& f = tris[t];
+    const Float_point &a = rounded[f[0]], &b = rounded[f[1]], &c = rounded[f[2]];
+    const bool was_degenerate = collinear(points[f[0]], points[f[1]], points[f[2]]);
+    if(was_degenerate) continue;
+    if(CGAL::collinear(a, b, c))
+      throw Write_error("triangle " + std::to_string(t) + " (points " + std::to_string(f[0]) + ", " +
+                        std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") becomes degenerate in float" + advice);
+    const std::array<double, 3> n0 = normal(internal::write_coordinates(points[f[0]]), internal::write_coordinates(points[f[1]]),
+                                            internal::write_coordinates(points[f[2]]));
+    const std::array<double, 3> n1 = normal(coordinates(a), coordinates(b), coordinates(c));
+    if(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0)
+      throw Write_error("triangle " + std::to_string(t) + " (points " + std::to_string(f[0]) + ", " +
+                        std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") flips in float" + advice);
+  }
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `os` as OFF: the header `OFF`, the counts, one point per line, one
+/// `3 i j k` line per triangle.
+///
+/// \tparam PointRange a range of `Point_3`
+/// \tparam TriangleRange a range of faces of 3 indices into `points`
+/// \param os the stream (opened in binary mode or not: only `\n` is written)
+/// \param points the points, all written, in their order
+/// \param triangles the triangles, written in their order
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{stream_precision}
+///     \cgalParamDescription{the number of significant digits of the coordinates}
+///     \cgalParamType{int}
+///     \cgalParamDefault{`17`, enough for every double to read back as itself}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Write_error if a coordinate is not finite or the stream fails.
+/// \throws Invalid_input if a face is not a triangle of distinct, in-range indices.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void write_OFF_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles,
+                             const NamedParameters& np = CGAL::parameters::default_values())
+{
+  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
+  const auto tris = internal::write_triangles(triangles, points.size());
+  internal::check_finite_for_writing(points);
+  internal::Text_line t;
+  t << "OFF\n";
+  t.integer(points.size()) << ' ';
+  t.integer(tris.size()) << " 0\n";
+  for(const auto& p : points) {
+    const auto c = internal::write_coordinates(p);
+    t.real(c[0], precision) << ' ';
+    t.real(c[1], precision) << ' ';
+    t.real(c[2], precision) << '\n';
+    t.flush_to(os);
+  }
+  for(const auto& f : tris) {
+    t << "3 ";
+    t.integer(f[0]) << ' ';
+    t.integer(f[1]) << ' ';
+    t.integer(f[2]) << '\n';
+    t.flush_to(os);
+  }
+  t.flush_to(os, true);
+  os.flush();
+  internal::check_stream(os);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `os` as Wavefront OBJ: `v x y z` lines, then `f i j k` lines
+/// (1-based). Parameters as for `write_OFF_triangle_soup()`.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void write_OBJ_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles,
+                             const NamedParameters& np = CGAL::parameters::default_values())
+{
+  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
+  const auto tris = internal::write_triangles(triangles, points.size());
+  internal::check_finite_for_writing(points);
+  internal::Text_line t;
+  for(const auto& p : points) {
+    const auto c = internal::write_coordinates(p);
+    t << "v ";
+    t.real(c[0], precision) << ' ';
+    t.real(c[1], precision) << ' ';
+    t.real(c[2], precision) << '\n';
+    t.flush_to(os);
+  }
+  for(const auto& f : tris) {
+    t << "f ";
+    t.integer(f[0] + 1) << ' ';
+    t.integer(f[1] + 1) << ' ';
+    t.integer(f[2] + 1) << '\n';
+    t.flush_to(os);
+  }
+  t.flush_to(os, true);
+  os.flush();
+  internal::check_stream(os);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `os` as PLY: an element `vertex` of three `double` properties
+/// `x y z`, an element `face` with a `list uchar int vertex_indices`; binary little-endian or ASCII.
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{use_binary_mode}
+///     \cgalParamDescription{`binary_little_endian` if `true`, `ascii` if `false`}
+///     \cgalParamType{bool}
+///     \cgalParamDefault{`true`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{stream_precision}
+///     \cgalParamDescription{the number of significant digits of the coordinates in ASCII mode}
+///     \cgalParamType{int}
+///     \cgalParamDefault{`17`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// The stream must be opened in binary mode for binary output.
+/// \throws Write_error if a coordinate is not finite, an index does not fit in an `int`, or the
+/// stream fails.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void write_PLY_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles,
+                             const NamedParameters& np = CGAL::parameters::default_values())
+{
+  const bool binary = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::use_binary_mode), true);
+  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
+  const auto tris = internal::write_triangles(triangles, points.size());
+  internal::check_finite_for_writing(points);
+  if(points.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw Write_error("PLY face indices are written as int: " + std::to_string(points.size()) + " points are too many");
+  internal::Text_line t;
+  t << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\nelement vertex ";
+  t.integer(points.size()) << "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
+  t.integer(tris.size()) << "\nproperty list uchar int vertex_indices\nend_header\n";
+  t.flush_to(os, true);
+  if(binary) {
+    std::string data;
+    auto flush = [&](bool force) {
+      if(force || data.size() > (1u << 16)) {
+        os.write(data.data(), static_cast<std::streamsize>(data.size()));
+        data.clear();
+      }
+    };
+    for(const auto& p : points) {
+      for(double c : internal::write_coordinates(p)) internal::put_little_endian(data, c);
+      flush(false);
+    }
+    for(const auto& f : tris) {
+      data.push_back(3);
+      for(std::size_t v : f) internal::put_little_endian(data, static_cast<std::int32_t>(v));
+      flush(false);
+    }
+    flush(true);
+  } else {
+    for(const auto& p : points) {
+      const auto c = internal::write_coordinates(p);
+      t.real(c[0], precision) << ' ';
+      t.real(c[1], precision) << ' ';
+      t.real(c[2], precision) << '\n';
+      t.flush_to(os);
+    }
+    for(const auto& f : tris) {
+      t << "3 ";
+      t.integer(f[0]) << ' ';
+      t.integer(f[1]) << ' ';
+      t.integer(f[2]) << '\n';
+      t.flush_to(os);
+    }
+    t.flush_to(os, true);
+  }
+  os.flush();
+  internal::check_stream(os);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `os` as binary STL: an 80-byte header, the count, then per triangle
+/// its unit normal and its three corners as 32-bit floats, little-endian.
+///
+/// `check_STL_float_rounding()` is called first: nothing is written when float rounding would
+/// change the soup. STL holds no indices: a reader gets the triangles back by welding equal
+/// corners, so points equal in double (duplicated to separate a non-manifold vertex or edge)
+/// are welded again.
+///
+/// The stream must be opened in binary mode.
+/// \throws Write_error as `check_STL_float_rounding()`, if there are more than 2^32 - 1
+/// triangles, or if the stream fails.
+template <class PointRange, class TriangleRange>
+void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles)
+{
+  const auto tris = internal::write_triangles(triangles, points.size());
+  if(tris.size() > std::numeric_limits<std::uint32_t>::max())
+    throw Write_error("binary STL counts facets on 32 bits: " + std::to_string(tris.size()) + " triangles are too many");
+  check_STL_float_rounding(points, tris);
+  std::string data = "binary STL written by Soup_topology";
+  data.resize(80, ' ');
+  internal::put_little_endian(data, static_cast<std::uint32_t>(tris.size()));
+  for(const auto& f : tris) {
+    const auto a = internal::write_coordinates(points[f[0]]);
+    const auto b = internal::write_coordinates(points[f[1]]);
+    const auto c = internal::write_coordinates(points[f[2]]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for(double& x : n) x = (length > 0 && std::isfinite(length)) ? x / length : 0.0;
+    for(double x : n) internal::put_little_endian(data, static_cast<float>(x));
+    for(const auto* corner : {&a, &b, &c})
+      for(double x : *corner) internal::put_little_endian(data, static_cast<float>(x));
+    data.append(2, '\0');
+    if(data.size() > (1u << 16)) {
+      os.write(data.data(), static_cast<std::streamsize>(data.size()));
+      data.clear();
+    }
+  }
+  os.write(data.data(), static_cast<std::streamsize>(data.size()));
+  os.flush();
+  internal::check_stream(os);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `os` in `format` (`"off"`, `"obj"`, `"ply"` or `"stl"`, lower
+/// case), with the named parameters of the format's writer.
+/// \throws Write_error for an unknown format and as the format's writer.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void write_triangle_soup(std::ostream& os, const std::string& format, const PointRange& points,
+                         const TriangleRange& triangles, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  if(format == "off") write_OFF_triangle_soup(os, points, triangles, np);
+  else if(format == "obj") write_OBJ_triangle_soup(os, points, triangles, np);
+  else if(format == "ply") write_PLY_triangle_soup(os, points, triangles, np);
+  else if(format == "stl") write_STL_triangle_soup(os, points, triangles);
+  else throw Write_error("unknown output format '" + format + "' (expected off, obj, ply or stl)");
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief writes the soup to `filename`, in the format of its extension (`.off`, `.obj`, `.ply`,
+/// `.stl`, any case); see `write_OFF_triangle_soup()`, `write_OBJ_triangle_soup()`,
+/// `write_PLY_triangle_soup()` and `write_STL_triangle_soup()` for the named parameters.
+///
+/// The file is written in place (opened, truncated, written): a caller who must never leave a
+/// half-written file writes to a temporary file and renames it. Nothing is opened when the soup
+/// cannot be written in the format (the checks come first).
+///
+/// \throws Write_error naming `filename`: unknown extension, cannot be opened, failed write,
+/// STL float rounding; Invalid_input for a face that is not a triangle of in-range indices.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void write_triangle_soup(const std::string& filename, const PointRange& points, const TriangleRange& triangles,
+                         const NamedParameters& np = CGAL::parameters::default_values())
+{
+  std::string format;
+  {
+    const std::size_t dot = filename.find_last_of('.');
+    const std::size_t slash = filename.find_last_of("/\\");
+    if(dot != std::string::npos && (slash == std::string::npos || dot > slash)) format = filename.substr(dot + 1);
+    for(char& c : format) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  try {
+    if(format != "off" && format != "obj" && format != "ply" && format != "stl")
+      throw Write_error("unknown output extension '" + format + "' (expected .off, .obj, .ply or .stl)");
+    if(format == "stl") check_STL_float_rounding(points, triangles);
+    else internal::check_finite_for_writing(points);
+    std::ofstream os(filename, std::ios::binary | std::ios::trunc);
+    if(!os) throw Write_error(std::string("cannot open the file for writing (") + std::strerror(errno) + ")");
+    write_triangle_soup(os, format, points, triangles, np);
+    os.close();
+    if(!os) throw Write_error("the write failed");
+  } catch(const Write_error& e) {
+    throw Write_error(filename + ": " + e.what());
+  }
+}
+
+} // namespace IO
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_IO_WRITE_TRIANGLE_SOUP_H
