@@ -164,6 +164,15 @@ void print(const std::string& text)
   }
 }
 
+// What the reader left out or triangulated: nothing read is dropped without a count.
+void add_read_counts(Report& r, const ST::IO::Soup_read_report& read)
+{
+  r.add("skipped_polygons", read.skipped_polygons);
+  r.add("non_simple_polygons", read.non_simple_polygons);
+  r.add("non_convex_polygons", read.non_convex_polygons);
+  r.add("ear_clipping_failures", read.ear_clipping_failures);
+}
+
 int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
@@ -187,6 +196,7 @@ int run_stats(const std::vector<std::string>& args)
   r.add_string("format", read.format);
   r.add("input_vertices", read.input_vertices);
   r.add("input_polygons", read.input_polygons);
+  add_read_counts(r, read);
   r.add("exact_duplicates", read.exact_duplicates);
   add_statistics(r, s, read.collapsed_triangles);
   print(json ? r.json() + "\n" : "soup_topology stats\n" + r.text());
@@ -324,6 +334,7 @@ int run_repair(const std::vector<std::string>& args)
   rep.add_string("format", read.format);
   rep.add("input_vertices", read.input_vertices);
   rep.add("input_triangles", read.input_triangles);
+  add_read_counts(rep, read);
   rep.add("exact_duplicates", read.exact_duplicates);
   rep.add("tolerance", r.tolerance);
   add_statistics(rep, s, 0);
