@@ -16,6 +16,10 @@
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+// CGAL's soup-to-mesh functions, which callers of this header compare its meshes with and reach
+// through it; this header itself does not use them.
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <array>
 #include <cstddef>

@@ -187,8 +187,10 @@ private:
   // Breadth-first from `root` across the manifold edges not cut: each triangle reached is
   // reversed or not so that it runs the shared edge opposite to the triangle it is reached
   // from; an edge between two triangles already placed that run it the same way is cut. Appends
-  // the triangles of the patch to `patch_order_`; returns whether an edge was cut.
-  bool orient_patch_from(size_type root, size_type p)
+  // the triangles of the patch to `patch_order_`; returns whether an edge was cut. With
+  // `canonical_edges` the three edges of a triangle are crossed in the order of the ranks of
+  // their points rather than in their order in the triangle, which the input can rotate.
+  bool orient_patch_from(size_type root, size_type p, bool canonical_edges)
   {
     std::size_t head = patch_order_.size();
     patch_[root] = p;
@@ -197,7 +199,17 @@ private:
     bool cut_an_edge = false;
     while(head < patch_order_.size()) {
       const size_type t = patch_order_[head++];
-      for(int i = 0; i < 3; ++i) {
+      std::array<int, 3> edges = {0, 1, 2};
+      if(canonical_edges) {
+        const std::vector<size_type>& rank = point_ranks();
+        std::array<std::pair<size_type, size_type>, 3> key;
+        for(int i = 0; i < 3; ++i) {
+          const size_type ra = rank[tables_.vertex(t, i)], rb = rank[tables_.vertex(t, (i + 1) % 3)];
+          key[std::size_t(i)] = {std::min(ra, rb), std::max(ra, rb)};
+        }
+        std::sort(edges.begin(), edges.end(), [&](int x, int y) { return key[std::size_t(x)] < key[std::size_t(y)]; });
+      }
+      for(int i : edges) {
         const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
         const size_type u = tables_.neighbor(t, i);
         if(u >= Adjacency_tables::non_manifold_edge || cut_[ti]) continue;
@@ -236,12 +248,12 @@ private:
       if(patch_[seed] != unset) continue;
       const size_type p = static_cast<size_type>(patch_begin_.size());
       patch_begin_.push_back(patch_order_.size());
-      if(orient_patch_from(seed, p)) non_orientable.push_back(p);
+      if(orient_patch_from(seed, p, false)) non_orientable.push_back(p);
     }
     patch_begin_.push_back(n);
     non_orientable_.assign(patch_begin_.size() - 1, 0);
-    // Where a cut is needed, which edges are cut depends on where the traversal starts: start
-    // again from the canonically smallest triangle so that the input order does not decide.
+    // Where a cut is needed, which edges are cut depends on the traversal: start again from the
+    // canonically smallest triangle, edges in canonical order, so that the input does not decide.
     std::vector<size_type> members;
     for(size_type p : non_orientable) {
       non_orientable_[p] = 1;
@@ -254,7 +266,7 @@ private:
       }
       const size_type root = canonical_min(members);
       const std::size_t end = patch_order_.size();
-      orient_patch_from(root, p);
+      orient_patch_from(root, p, true);
       std::copy(patch_order_.begin() + std::ptrdiff_t(end), patch_order_.end(),
                 patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]));
       patch_order_.resize(end);
