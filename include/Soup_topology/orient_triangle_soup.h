@@ -1,56 +1,54 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// Orienting an indexed triangle soup in place: repeated triangles left out, every edge-connected
-// component oriented consistently, non-manifold vertices and edges separated by duplicating
-// their points. What `triangle_soup_to_face_graph()` and the command-line writers build on.
+// Orienting an indexed triangle soup in place: repeated triangles left out, every patch oriented
+// consistently and then as a whole by a policy, non-manifold vertices and edges separated by
+// duplicating their points, every choice independent of the order of the triangles. What
+// `triangle_soup_to_face_graph()` and the command-line writers build on.
 
 #ifndef SOUP_TOPOLOGY_ORIENT_TRIANGLE_SOUP_H
 #define SOUP_TOPOLOGY_ORIENT_TRIANGLE_SOUP_H
 
-#include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
-#include <Soup_topology/Triangle_adjacency_graph.h>
+#include <Soup_topology/internal/orient_soup.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/parameters.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
 
-#include <boost/graph/breadth_first_search.hpp>
-
-#include <algorithm>
-#include <array>
 #include <cstddef>
-#include <vector>
 
 namespace Soup_topology {
 
-namespace internal {
-
-// BFS over the triangle adjacency graph: each triangle reached over a manifold edge is reversed
-// if it traverses the shared edge in the same direction as the triangle it was reached from.
-struct Orientation_bfs_visitor : boost::default_bfs_visitor
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief how `orient_triangle_soup()` (and `triangle_soup_to_face_graph()`) choose the
+/// orientation of each patch of the soup (a set of triangles connected through edges that
+/// exactly two triangles share).
+///
+/// In every policy a patch is first oriented consistently, keeping the input orientation of as
+/// many triangles as one orientation allows, so a patch already consistent as read keeps every
+/// triangle unless the policy turns it as a whole. Open patches always keep the orientation most
+/// of their triangles have as read. The policies differ on closed patches:
+enum class Orientation_policy
 {
-  std::vector<char>* reversed;
-  std::size_t* flips;
-  template <class Edge, class Graph>
-  void tree_edge(const Edge& e, const Graph& g) const
-  {
-    const Adjacency_tables& a = g.tables();
-    const auto s = source(e, g), t = target(e, g);
-    const Adjacency_tables::Edge h = halfedge_in_smaller_triangle(e, g);
-    const auto p = a.vertex(h.triangle, h.index), q = a.vertex(h.triangle, (h.index + 1) % 3);
-    auto goes_p_to_q = [&](Adjacency_tables::size_type u) {
-      const int j = a.edge_index(u, p, q);
-      return (a.vertex(u, j) == p) != ((*reversed)[u] != 0);
-    };
-    if(goes_p_to_q(s) == goes_p_to_q(t)) { (*reversed)[t] = !(*reversed)[t]; ++*flips; }
-  }
+  /// closed patches are oriented as `CGAL::Polygon_mesh_processing::orient_to_bound_a_volume()`
+  /// does: by nesting depth, outermost shells outward, shells inside them inward, and so on. The
+  /// default: a soup that bounds a volume as read is left as it is (a shell with a cavity keeps
+  /// its inward inner shell), and one that does not is turned so that it does wherever the
+  /// shells do not intersect, which is what a repaired mesh is for.
+  BOUND_VOLUME,
+  /// every patch already consistently oriented as read keeps its orientation, even a closed
+  /// shell that faces inward alone; only the other closed patches are oriented by nesting depth.
+  /// For data whose orientation carries meaning of its own.
+  KEEP_INPUT,
+  /// every closed patch gets a positive signed volume, nested or not: cavities face outward too,
+  /// so a shell with a cavity no longer bounds a volume. For callers that want every closed
+  /// piece to be a solid of its own.
+  OUTWARD
 };
-
-} // namespace internal
 
 /// \ingroup PkgSoupTopologyPipeline
 /// \brief what `orient_triangle_soup()` changed to make the soup the triangles of a valid
@@ -68,115 +66,72 @@ using Face_graph_output_report = Orientation_report;
 
 /// \ingroup PkgSoupTopologyPipeline
 /// \brief orients an indexed triangle soup in place so that it is the face set of a valid
-/// polygon mesh.
+/// polygon mesh (it passes `CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh()`,
+/// every vertex being one fan).
 ///
-/// Triangles repeating another triangle's three vertices are left out (the first is kept); each
-/// edge-connected component is oriented consistently by a breadth-first search over the
-/// `Triangle_adjacency_graph` (from its smallest triangle), then turned as a whole so that a
-/// closed component has a positive signed volume and an open one reverses fewer triangles than
-/// it keeps; vertices and edges that cannot be manifold are separated by duplicating their points
-/// (appended to `points`). Each step is counted in the report.
+/// 1. Triangles on the same three vertices are one: the orientation most of them have is kept
+///    (on a tie, a canonical one), from its first occurrence; the others are left out.
+/// 2. The triangles are grouped into patches: connected through edges shared by exactly two
+///    triangles. Each patch is oriented by a breadth-first traversal; a patch that cannot be
+///    oriented (a Moebius strip) gives up the edges where the traversal meets itself, starting
+///    from its canonically smallest triangle.
+/// 3. Every vertex gets one point per fan of its triangles: edges shared by three or more
+///    triangles and given-up edges do not join fans. The extra points are appended to `pts`.
+/// 4. Each patch is turned as a whole by the `orientation_policy`.
 ///
-/// \tparam PointRange a `std::vector` of `Point_3`
-/// \tparam TriangleRange a `std::vector` of `std::array<std::size_t, 3>`
-/// \param pts the points; duplicated points are appended
-/// \param tris the triangles, changed in place
-/// \throws Invalid_input if a face is not a triangle of in-range, distinct indices.
-template <class PointRange, class TriangleRange>
-Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris)
+/// The result does not depend on the order of the triangles: every choice the order could decide
+/// is made on the canonical order of the triangles (by the sorted ranks of their points, points
+/// ranked by lexicographic coordinates). For any permutation of the triangles the set of
+/// oriented triangles and the points are the same; for a permutation of the points too, the
+/// result is the same up to relabelling wherever distinct points have distinct coordinates.
+/// A soup that is already a consistently oriented closed manifold keeps its triangles, or has
+/// each closed component reversed as a whole by the policy.
+///
+/// \tparam PointRange a `std::vector` of `Point_3` (of a CGAL kernel)
+/// \tparam TriangleRange a `std::vector` of triangles of three indices (`std::array<std::size_t, 3>`, ...)
+/// \tparam NamedParameters a sequence of named parameters
+/// \param pts the points; duplicated points are appended, nothing else changes
+/// \param tris the triangles, changed in place (repeated ones removed, the others keep their order)
+/// \param np optional named parameters among the following ones:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{orientation_policy}
+///     \cgalParamDescription{how closed patches are oriented}
+///     \cgalParamType{`Soup_topology::Orientation_policy`}
+///     \cgalParamDefault{`Orientation_policy::BOUND_VOLUME`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{the kernel, for the lexicographic order of points}
+///     \cgalParamType{a model of `Kernel`}
+///     \cgalParamDefault{the kernel of the point type}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns what was changed
+/// \throws Invalid_input if a face is not a triangle of in-range, distinct indices, or a point has
+///         a non-finite coordinate; nothing is changed then.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
+                                        const NamedParameters& np = CGAL::parameters::default_values())
 {
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
   using Point = typename PointRange::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Default_kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Kernel = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t, NamedParameters,
+                                                                     Default_kernel>::type;
   internal::check_triangle_soup(tris, pts.size());
+  internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
+  const Orientation_policy policy =
+    choose_parameter(get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
+  internal::Patch_orientation_rules rules;
+  rules.keep_consistent_input = (policy == Orientation_policy::KEEP_INPUT);
+  rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
+  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
+  internal::Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
+  const auto counts = orienter.run();
   Orientation_report report;
-  // Leave out repeated triangles (same three vertices in any order), keeping the first.
-  {
-    std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys(tris.size());
-    for(std::size_t t = 0; t < tris.size(); ++t) {
-      std::array<std::size_t, 3> k = tris[t];
-      std::sort(k.begin(), k.end());
-      keys[t] = {k, t};
-    }
-    std::sort(keys.begin(), keys.end());
-    std::vector<char> drop(tris.size(), 0);
-    for(std::size_t k = 1; k < keys.size(); ++k)
-      if(keys[k].first == keys[k - 1].first) { drop[keys[k].second] = 1; ++report.duplicate_triangles; }
-    std::size_t kept = 0;
-    for(std::size_t t = 0; t < tris.size(); ++t) if(!drop[t]) tris[kept++] = tris[t];
-    tris.resize(kept);
-  }
-
-  // Orient every component by a BFS over the triangle adjacency graph.
-  const Adjacency_tables tables(tris, pts.size());
-  const Triangle_adjacency_graph graph(tables);
-  std::vector<char> reversed(tris.size(), 0);
-  std::size_t flips = 0;
-  std::vector<Adjacency_tables::size_type> component;
-  const std::size_t number_of_components = tables.number_of_connected_components(&component);
-  {
-    std::vector<boost::default_color_type> colour(tris.size(), boost::white_color);
-    auto colour_map = boost::make_iterator_property_map(colour.begin(), get(boost::vertex_index, graph));
-    internal::Orientation_bfs_visitor visitor;
-    visitor.reversed = &reversed;
-    visitor.flips = &flips;
-    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t)
-      if(colour[t] == boost::white_color)
-        boost::breadth_first_visit(graph, t, boost::visitor(visitor).color_map(colour_map));
-  }
-  // Canonical orientation per component: positive volume if closed, else fewer reversals.
-  {
-    std::vector<double> volume(number_of_components, 0.0);
-    std::vector<std::size_t> size(number_of_components, 0), reversals(number_of_components, 0);
-    std::vector<char> open(number_of_components, 0);
-    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t) {
-      const std::size_t c = component[t];
-      ++size[c];
-      if(reversed[t]) ++reversals[c];
-      for(int i = 0; i < 3; ++i) if(tables.is_border_edge(t, i)) open[c] = 1;
-      const Point& a = pts[tris[t][0]];
-      const Point& b = pts[tris[t][reversed[t] ? 2 : 1]];
-      const Point& d = pts[tris[t][reversed[t] ? 1 : 2]];
-      const double ax = CGAL::to_double(a.x()), ay = CGAL::to_double(a.y()), az = CGAL::to_double(a.z());
-      const double bx = CGAL::to_double(b.x()), by = CGAL::to_double(b.y()), bz = CGAL::to_double(b.z());
-      const double dx = CGAL::to_double(d.x()), dy = CGAL::to_double(d.y()), dz = CGAL::to_double(d.z());
-      volume[c] += ax * (by * dz - bz * dy) - ay * (bx * dz - bz * dx) + az * (bx * dy - by * dx);
-    }
-    std::vector<char> turn(number_of_components, 0);
-    for(std::size_t c = 0; c < number_of_components; ++c)
-      turn[c] = open[c] ? (2 * reversals[c] > size[c]) : (volume[c] < 0);
-    for(Adjacency_tables::size_type t = 0; t < tris.size(); ++t)
-      if(turn[component[t]]) reversed[t] = !reversed[t];
-  }
-  for(std::size_t t = 0; t < tris.size(); ++t)
-    if(reversed[t]) {
-      ++report.orientation_flips;
-      std::swap(tris[t][1], tris[t][2]);
-    }
-  // When every edge is manifold and consistently oriented and every vertex is manifold, the
-  // oriented triangles go to the mesh as they are. Otherwise CGAL's orient_polygon_soup()
-  // separates what cannot be manifold by duplicating points (measured: on 1.2M manifold
-  // triangles it costs three times as much as the rest of this function, hence the test).
-  bool manifold = tables.non_manifold_vertices().empty();
-  for(Adjacency_tables::size_type t = 0; manifold && t < tris.size(); ++t)
-    for(int i = 0; i < 3 && manifold; ++i) {
-      const Adjacency_tables::size_type u = tables.neighbor(t, i);
-      if(u == Adjacency_tables::border_edge) continue;
-      if(u == Adjacency_tables::non_manifold_edge) { manifold = false; break; }
-      const std::size_t a = tables.vertex(t, i), b = tables.vertex(t, (i + 1) % 3);
-      // t now runs a -> b unless reversed; u must run b -> a.
-      const bool t_forward = !reversed[t];
-      const int j = tables.edge_index(u, static_cast<Adjacency_tables::size_type>(a), static_cast<Adjacency_tables::size_type>(b));
-      const bool u_forward = (tables.vertex(u, j) == a) != (reversed[u] != 0);
-      if(t_forward == u_forward) manifold = false;
-    }
-  if(manifold) return report;
-  std::vector<std::vector<std::size_t>> polygons(tris.size());
-  for(std::size_t t = 0; t < tris.size(); ++t) polygons[t] = {tris[t][0], tris[t][1], tris[t][2]};
-  const std::size_t points_before = pts.size();
-  CGAL::Polygon_mesh_processing::orient_polygon_soup(pts, polygons, CGAL::parameters::geom_traits(Kernel()));
-  report.duplicated_points = pts.size() - points_before;
-  tris.resize(polygons.size());
-  for(std::size_t t = 0; t < polygons.size(); ++t) tris[t] = {polygons[t][0], polygons[t][1], polygons[t][2]};
+  report.duplicate_triangles = counts.duplicate_triangles;
+  report.orientation_flips = counts.orientation_flips;
+  report.duplicated_points = counts.duplicated_points;
   return report;
 }
 

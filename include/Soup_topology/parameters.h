@@ -38,6 +38,9 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(maximum_number_of_rounds_t, maximum_number_of_rounds)
 /// whether `reconstruct_topology()` splits T-junctions (default `true`).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(split_t_junctions_t, do_split_t_junctions)
+/// how `orient_triangle_soup()` and `triangle_soup_to_face_graph()` orient closed patches, a
+/// `Soup_topology::Orientation_policy` (default `Orientation_policy::BOUND_VOLUME`).
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(orientation_policy_t, orientation_policy)
 
 namespace parameters {
 using CGAL::parameters::default_values;

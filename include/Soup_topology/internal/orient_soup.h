@@ -1,0 +1,519 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The steps of `orient_triangle_soup()`: repeated triangles, orientation of the patches, fans of
+// the vertices, orientation of each patch as a whole, writing back. Every choice that the input
+// order could change is made on a canonical order of the triangles instead.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_ORIENT_SOUP_H
+#define SOUP_TOPOLOGY_INTERNAL_ORIENT_SOUP_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/separate_non_manifold.h>
+#include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/Bbox_3.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// How `Soup_orienter` turns a patch whose triangles form a closed surface.
+struct Patch_orientation_rules
+{
+  /// a patch already consistently oriented as read keeps its orientation, closed or not.
+  bool keep_consistent_input = false;
+  /// closed patches: orientation by nesting depth (outermost outward, the next inward, ...)
+  /// when true, outward (positive signed volume) when false.
+  bool nest_closed_patches = true;
+};
+
+/// Orients an indexed triangle soup in place (see `orient_triangle_soup()`).
+///
+/// A *patch* is a set of triangles connected through edges shared by exactly two triangles.
+/// Edges shared by three or more triangles separate patches, and so does an edge that a
+/// non-orientable patch has to give up (cut). The orientation of a patch is decided as a whole;
+/// its vertices are then duplicated once per fan.
+///
+/// The canonical order of triangles, used wherever the input order could decide: the sorted
+/// triple of the ranks of their points, points ranked by lexicographic coordinates (then by
+/// index). It is computed only when a decision needs it (repeated triangles of both orientations
+/// in equal numbers, a non-orientable patch, a tie between the two orientations of a patch, a
+/// non-manifold vertex), so a clean mesh does not pay for the sort.
+template <class PointRange, class TriangleRange, class Kernel>
+class Soup_orienter
+{
+public:
+  using size_type = Adjacency_tables::size_type;
+  using Point = typename PointRange::value_type;
+
+  struct Counts
+  {
+    std::size_t duplicate_triangles = 0;
+    std::size_t orientation_flips = 0;
+    std::size_t duplicated_points = 0;
+  };
+
+  Soup_orienter(PointRange& points, TriangleRange& triangles, const Patch_orientation_rules& rules, const Kernel& kernel)
+    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size())
+  {}
+
+  Counts run()
+  {
+    remove_repeated_triangles();
+    tables_ = Adjacency_tables(triangles_, points_.size());
+    orient_patches();
+    separate_fans();
+    find_closed_patches();
+    choose_patch_orientations();
+    write_back();
+    return counts_;
+  }
+
+private:
+  static constexpr size_type unset = static_cast<size_type>(-1);
+
+  // --- Canonical order -------------------------------------------------------------------------
+
+  const std::vector<size_type>& point_ranks()
+  {
+    if(rank_.size() != input_points_) {
+      std::vector<size_type> order(input_points_);
+      std::iota(order.begin(), order.end(), size_type(0));
+      const auto less_xyz = kernel_.less_xyz_3_object();
+      std::stable_sort(order.begin(), order.end(),
+                       [&](size_type a, size_type b) { return less_xyz(points_[a], points_[b]); });
+      rank_.assign(input_points_, 0);
+      for(std::size_t r = 0; r < order.size(); ++r) rank_[order[r]] = static_cast<size_type>(r);
+    }
+    return rank_;
+  }
+
+  std::array<size_type, 3> canonical_key(size_type t)
+  {
+    const std::vector<size_type>& rank = point_ranks();
+    std::array<size_type, 3> k = {rank[tables_.vertex(t, 0)], rank[tables_.vertex(t, 1)], rank[tables_.vertex(t, 2)]};
+    std::sort(k.begin(), k.end());
+    return k;
+  }
+
+  // The canonically smallest of a list of triangles.
+  template <class Range>
+  size_type canonical_min(const Range& list)
+  {
+    size_type best = unset;
+    std::array<size_type, 3> best_key{};
+    for(size_type t : list) {
+      const std::array<size_type, 3> k = canonical_key(t);
+      if(best == unset || k < best_key) { best = t; best_key = k; }
+    }
+    return best;
+  }
+
+  // Whether (a, b, c) is a rotation of the triple sorted by `key` (rather than of its reverse).
+  template <class Key>
+  static bool is_increasing_rotation(std::size_t a, std::size_t b, std::size_t c, const Key& key)
+  {
+    const int ascents = int(key(a) < key(b)) + int(key(b) < key(c)) + int(key(c) < key(a));
+    return ascents == 2;
+  }
+
+  // --- Step 1: repeated triangles --------------------------------------------------------------
+
+  // Triangles on the same three vertices are one: the orientation kept is the one most of them
+  // have (on a tie, the increasing rotation of the point ranks), from its first occurrence.
+  void remove_repeated_triangles()
+  {
+    const std::size_t n = triangles_.size();
+    std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys(n);
+    for(std::size_t t = 0; t < n; ++t) {
+      std::array<std::size_t, 3> k = {corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t)};
+      std::sort(k.begin(), k.end());
+      keys[t] = {k, t};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<char> drop(n, 0);
+    auto by_index = [](std::size_t v) { return v; };
+    for(std::size_t g = 0; g < n;) {
+      std::size_t e = g + 1;
+      while(e < n && keys[e].first == keys[g].first) ++e;
+      if(e - g > 1) {
+        counts_.duplicate_triangles += e - g - 1;
+        auto increasing = [&](std::size_t t) {
+          return is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
+                                        by_index);
+        };
+        std::size_t up = 0;
+        for(std::size_t k = g; k < e; ++k) up += increasing(keys[k].second) ? 1 : 0;
+        bool keep_increasing = 2 * up > e - g;
+        if(2 * up == e - g) {
+          const std::vector<size_type>& rank = point_ranks();
+          const std::size_t t = keys[g].second;
+          const bool rank_increasing =
+            is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
+                                   [&](std::size_t v) { return rank[v]; });
+          keep_increasing = (increasing(t) == rank_increasing);
+        }
+        bool kept = false;
+        for(std::size_t k = g; k < e; ++k) {
+          const std::size_t t = keys[k].second; // in increasing index order within the group
+          if(!kept && increasing(t) == keep_increasing) kept = true;
+          else drop[t] = 1;
+        }
+      }
+      g = e;
+    }
+    if(counts_.duplicate_triangles == 0) return;
+    std::size_t kept = 0;
+    for(std::size_t t = 0; t < n; ++t)
+      if(!drop[t]) {
+        if(kept != t) triangles_[kept] = triangles_[t];
+        ++kept;
+      }
+    triangles_.resize(kept);
+  }
+
+  // --- Step 2: orientation of the patches ------------------------------------------------------
+
+  // Breadth-first from `root` across the manifold edges not cut: each triangle reached is
+  // reversed or not so that it runs the shared edge opposite to the triangle it is reached
+  // from; an edge between two triangles already placed that run it the same way is cut. Appends
+  // the triangles of the patch to `patch_order_`; returns whether an edge was cut. With
+  // `canonical_edges` the three edges of a triangle are crossed in the order of the ranks of
+  // their points rather than in their order in the triangle, which the input can rotate.
+  bool orient_patch_from(size_type root, size_type p, bool canonical_edges)
+  {
+    std::size_t head = patch_order_.size();
+    patch_[root] = p;
+    reversed_[root] = 0;
+    patch_order_.push_back(root);
+    bool cut_an_edge = false;
+    while(head < patch_order_.size()) {
+      const size_type t = patch_order_[head++];
+      std::array<int, 3> edges = {0, 1, 2};
+      if(canonical_edges) {
+        const std::vector<size_type>& rank = point_ranks();
+        std::array<std::pair<size_type, size_type>, 3> key;
+        for(int i = 0; i < 3; ++i) {
+          const size_type ra = rank[tables_.vertex(t, i)], rb = rank[tables_.vertex(t, (i + 1) % 3)];
+          key[std::size_t(i)] = {std::min(ra, rb), std::max(ra, rb)};
+        }
+        std::sort(edges.begin(), edges.end(), [&](int x, int y) { return key[std::size_t(x)] < key[std::size_t(y)]; });
+      }
+      for(int i : edges) {
+        const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
+        const size_type u = tables_.neighbor(t, i);
+        if(u >= Adjacency_tables::non_manifold_edge || cut_[ti]) continue;
+        const size_type a = tables_.vertex(t, i);
+        const int j = tables_.edge_index(u, a, tables_.vertex(t, (i + 1) % 3));
+        const bool u_reads_a_to_b = tables_.vertex(u, j) == a;
+        if(patch_[u] == unset) {
+          patch_[u] = p;
+          reversed_[u] = (u_reads_a_to_b != (reversed_[t] != 0)) ? 1 : 0;
+          patch_order_.push_back(u);
+        } else {
+          const bool t_runs_a_to_b = reversed_[t] == 0;
+          const bool u_runs_a_to_b = u_reads_a_to_b != (reversed_[u] != 0);
+          if(t_runs_a_to_b == u_runs_a_to_b) {
+            cut_[ti] = 1;
+            cut_[3 * std::size_t(u) + std::size_t(j)] = 1;
+            cut_an_edge = true;
+          }
+        }
+      }
+    }
+    return cut_an_edge;
+  }
+
+  void orient_patches()
+  {
+    const std::size_t n = tables_.number_of_triangles();
+    reversed_.assign(n, 0);
+    patch_.assign(n, unset);
+    cut_.assign(3 * n, 0);
+    patch_order_.clear();
+    patch_order_.reserve(n);
+    patch_begin_.clear();
+    std::vector<size_type> non_orientable;
+    for(size_type seed = 0; seed < n; ++seed) {
+      if(patch_[seed] != unset) continue;
+      const size_type p = static_cast<size_type>(patch_begin_.size());
+      patch_begin_.push_back(patch_order_.size());
+      if(orient_patch_from(seed, p, false)) non_orientable.push_back(p);
+    }
+    patch_begin_.push_back(n);
+    non_orientable_.assign(patch_begin_.size() - 1, 0);
+    // Where a cut is needed, which edges are cut depends on the traversal: start again from the
+    // canonically smallest triangle, edges in canonical order, so that the input does not decide.
+    std::vector<size_type> members;
+    for(size_type p : non_orientable) {
+      non_orientable_[p] = 1;
+      members.assign(patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]),
+                     patch_order_.begin() + std::ptrdiff_t(patch_begin_[p + 1]));
+      for(size_type t : members) {
+        patch_[t] = unset;
+        reversed_[t] = 0;
+        for(int i = 0; i < 3; ++i) cut_[3 * std::size_t(t) + std::size_t(i)] = 0;
+      }
+      const size_type root = canonical_min(members);
+      const std::size_t end = patch_order_.size();
+      orient_patch_from(root, p, true);
+      std::copy(patch_order_.begin() + std::ptrdiff_t(end), patch_order_.end(),
+                patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]));
+      patch_order_.resize(end);
+    }
+  }
+
+  // --- Step 3: non-manifold vertices -----------------------------------------------------------
+
+  // Every vertex gets one point per fan of its triangles (edges shared by three or more
+  // triangles and cut edges do not join fans). The fan with the canonically smallest triangle
+  // keeps the point; the others get copies appended, in the canonical order of their smallest
+  // triangles, vertex after vertex in index order.
+  void separate_fans()
+  {
+    const std::size_t n = tables_.number_of_triangles();
+    corner_vertex_.resize(3 * n);
+    for(size_type t = 0; t < n; ++t)
+      for(int i = 0; i < 3; ++i) corner_vertex_[3 * std::size_t(t) + std::size_t(i)] = tables_.vertex(t, i);
+    std::vector<std::size_t> fan, stack, rank_of_fan, new_index;
+    std::vector<size_type> smallest;
+    for(size_type v = 0; v < tables_.number_of_vertices(); ++v) {
+      if(tables_.degree(v) < 2) continue;
+      const std::size_t k = fans_around_vertex(tables_, cut_, v, fan, stack);
+      if(k == 1) continue;
+      const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(v);
+      smallest.assign(k, unset);
+      std::vector<std::array<size_type, 3>> smallest_key(k);
+      for(std::size_t j = 0; j < around.size(); ++j) {
+        const std::array<size_type, 3> key = canonical_key(around[j]);
+        if(smallest[fan[j]] == unset || key < smallest_key[fan[j]]) { smallest[fan[j]] = around[j]; smallest_key[fan[j]] = key; }
+      }
+      rank_of_fan.resize(k);
+      std::iota(rank_of_fan.begin(), rank_of_fan.end(), std::size_t(0));
+      std::sort(rank_of_fan.begin(), rank_of_fan.end(),
+                [&](std::size_t a, std::size_t b) { return smallest_key[a] < smallest_key[b]; });
+      new_index.assign(k, v);
+      for(std::size_t r = 1; r < k; ++r) {
+        const Point copy = points_[v];
+        new_index[rank_of_fan[r]] = points_.size();
+        points_.push_back(copy);
+        ++counts_.duplicated_points;
+      }
+      for(std::size_t j = 0; j < around.size(); ++j)
+        corner_vertex_[3 * std::size_t(around[j]) + std::size_t(tables_.local_index(around[j], v))] = new_index[fan[j]];
+    }
+  }
+
+  // Whether edge i of t is shared by another triangle once the fans are separated. Only a
+  // triangle of the same patch can share it (both ends are in the same fans), and then it runs
+  // the edge in the opposite direction: the fans are consistently oriented.
+  bool is_shared_in_output(size_type t, int i)
+  {
+    const size_type u = tables_.neighbor(t, i);
+    const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
+    if(u == Adjacency_tables::border_edge || cut_[ti]) return false;
+    if(u != Adjacency_tables::non_manifold_edge) return true;
+    const std::size_t a = corner_vertex_[ti], b = corner_vertex_[3 * std::size_t(t) + std::size_t((i + 1) % 3)];
+    around_edge_.clear();
+    tables_.triangles_around_edge(t, i, std::back_inserter(around_edge_));
+    for(size_type w : around_edge_) {
+      bool has_a = false, has_b = false;
+      for(int k = 0; k < 3; ++k) {
+        const std::size_t c = corner_vertex_[3 * std::size_t(w) + std::size_t(k)];
+        has_a = has_a || c == a;
+        has_b = has_b || c == b;
+      }
+      if(has_a && has_b) return true;
+    }
+    return false;
+  }
+
+  void find_closed_patches()
+  {
+    closed_.assign(patch_begin_.size() - 1, 1);
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+      for(int i = 0; i < 3 && closed_[patch_[t]]; ++i)
+        if(!is_shared_in_output(t, i)) closed_[patch_[t]] = 0;
+  }
+
+  // --- Step 4: orientation of each patch as a whole ----------------------------------------------
+
+  const std::array<double, 3>& xyz(std::size_t v) const { return xyz_[v]; }
+
+  // Six times the signed volume of the patch as oriented by step 2.
+  double patch_volume(size_type p) const
+  {
+    double volume = 0;
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
+      const size_type t = patch_order_[k];
+      const std::array<double, 3>& a = xyz(tables_.vertex(t, 0));
+      const std::array<double, 3>& b = xyz(tables_.vertex(t, reversed_[t] ? 2 : 1));
+      const std::array<double, 3>& d = xyz(tables_.vertex(t, reversed_[t] ? 1 : 2));
+      volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+    }
+    return volume;
+  }
+
+  // The generalised winding number of the (closed) patch p around point q: the sum of the solid
+  // angles of its triangles seen from q over 4 pi; close to +-1 inside, 0 outside.
+  double winding_number(size_type p, const std::array<double, 3>& q) const
+  {
+    double sum = 0;
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
+      const size_type t = patch_order_[k];
+      std::array<double, 3> c[3];
+      for(int i = 0; i < 3; ++i) {
+        const std::array<double, 3>& x = xyz(tables_.vertex(t, i));
+        c[i] = {x[0] - q[0], x[1] - q[1], x[2] - q[2]};
+      }
+      if(reversed_[t]) std::swap(c[1], c[2]);
+      auto dot = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
+        return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+      };
+      const double la = std::sqrt(dot(c[0], c[0])), lb = std::sqrt(dot(c[1], c[1])), lc = std::sqrt(dot(c[2], c[2]));
+      const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) - c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
+                         c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
+      const double den = la * lb * lc + dot(c[0], c[1]) * lc + dot(c[0], c[2]) * lb + dot(c[1], c[2]) * la;
+      sum += 2 * std::atan2(det, den);
+    }
+    return sum / (4 * 3.14159265358979323846);
+  }
+
+  // For every closed patch, the number of other closed patches that enclose it, tested at the
+  // centroid of its largest triangle (a geometric choice: the input order does not change it).
+  std::vector<std::size_t> nesting_depths(const std::vector<size_type>& closed_patches) const
+  {
+    const std::size_t m = closed_patches.size();
+    std::vector<std::array<double, 6>> box(m);
+    std::vector<std::array<double, 3>> sample(m);
+    for(std::size_t c = 0; c < m; ++c) {
+      const size_type p = closed_patches[c];
+      box[c] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+      double largest = -1;
+      for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
+        const size_type t = patch_order_[k];
+        const std::array<double, 3>& a = xyz(tables_.vertex(t, 0));
+        const std::array<double, 3>& b = xyz(tables_.vertex(t, 1));
+        const std::array<double, 3>& d = xyz(tables_.vertex(t, 2));
+        for(const std::array<double, 3>* x : {&a, &b, &d})
+          for(int i = 0; i < 3; ++i) {
+            box[c][i] = std::min(box[c][i], (*x)[i]);
+            box[c][i + 3] = std::max(box[c][i + 3], (*x)[i]);
+          }
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double area = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if(area > largest) {
+          largest = area;
+          sample[c] = {(a[0] + b[0] + d[0]) / 3, (a[1] + b[1] + d[1]) / 3, (a[2] + b[2] + d[2]) / 3};
+        }
+      }
+    }
+    // Only pairs of overlapping boxes can be nested: found by CGAL's box intersection, not by
+    // testing every pair (a soup can hold many thousands of closed pieces).
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+    std::vector<Box> boxes;
+    boxes.reserve(m);
+    for(std::size_t c = 0; c < m; ++c)
+      boxes.emplace_back(CGAL::Bbox_3(box[c][0], box[c][1], box[c][2], box[c][3], box[c][4], box[c][5]), c);
+    std::vector<std::size_t> depth(m, 0);
+    auto encloses = [&](std::size_t outer, std::size_t inner) {
+      for(int i = 0; i < 3; ++i)
+        if(box[inner][i] < box[outer][i] || box[outer][i + 3] < box[inner][i + 3]) return false;
+      return std::abs(winding_number(closed_patches[outer], sample[inner])) > 0.5;
+    };
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      if(encloses(x.info(), y.info())) ++depth[y.info()];
+      if(encloses(y.info(), x.info())) ++depth[x.info()];
+    });
+    return depth;
+  }
+
+  // An open patch (or one whose orientation the rules leave to the input): the orientation most
+  // of its triangles have as read; on a tie, the one its canonically smallest triangle has.
+  bool majority_turns(size_type p)
+  {
+    std::size_t reversals = 0;
+    const std::size_t size = patch_begin_[p + 1] - patch_begin_[p];
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) reversals += reversed_[patch_order_[k]] ? 1 : 0;
+    if(2 * reversals != size) return 2 * reversals > size;
+    std::vector<size_type> members(patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]),
+                                   patch_order_.begin() + std::ptrdiff_t(patch_begin_[p + 1]));
+    return reversed_[canonical_min(members)] != 0;
+  }
+
+  bool is_consistent_as_read(size_type p) const
+  {
+    if(non_orientable_[p]) return false;
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k)
+      if(reversed_[patch_order_[k]]) return false;
+    return true;
+  }
+
+  void choose_patch_orientations()
+  {
+    const std::size_t number_of_patches = patch_begin_.size() - 1;
+    turn_.assign(number_of_patches, 0);
+    xyz_.resize(input_points_);
+    for(std::size_t v = 0; v < input_points_; ++v)
+      xyz_[v] = {CGAL::to_double(points_[v].x()), CGAL::to_double(points_[v].y()), CGAL::to_double(points_[v].z())};
+    std::vector<size_type> by_volume, closed_patches;
+    for(size_type p = 0; p < number_of_patches; ++p) {
+      if(!closed_[p]) turn_[p] = majority_turns(p) ? 1 : 0;
+      else if(rules_.keep_consistent_input && is_consistent_as_read(p)) turn_[p] = 0;
+      else by_volume.push_back(p);
+      if(closed_[p]) closed_patches.push_back(p);
+    }
+    if(by_volume.empty()) return;
+    std::vector<std::size_t> depth(number_of_patches, 0);
+    if(rules_.nest_closed_patches) {
+      const std::vector<std::size_t> d = nesting_depths(closed_patches);
+      for(std::size_t c = 0; c < closed_patches.size(); ++c) depth[closed_patches[c]] = d[c];
+    }
+    for(size_type p : by_volume) turn_[p] = ((patch_volume(p) < 0) != (depth[p] % 2 == 1)) ? 1 : 0;
+  }
+
+  // --- Step 5: writing back --------------------------------------------------------------------
+
+  void write_back()
+  {
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t) {
+      const std::size_t* c = &corner_vertex_[3 * std::size_t(t)];
+      const bool reverse = (reversed_[t] != 0) != (turn_[patch_[t]] != 0);
+      if(reverse) ++counts_.orientation_flips;
+      if(reverse) assign_triangle(triangles_[t], c[0], c[2], c[1]);
+      else assign_triangle(triangles_[t], c[0], c[1], c[2]);
+    }
+  }
+
+  PointRange& points_;
+  TriangleRange& triangles_;
+  Patch_orientation_rules rules_;
+  Kernel kernel_;
+  std::size_t input_points_;
+  Counts counts_;
+  Adjacency_tables tables_;
+  std::vector<size_type> rank_;
+  std::vector<char> reversed_, cut_, non_orientable_, closed_, turn_;
+  std::vector<size_type> patch_;
+  std::vector<size_type> patch_order_;   // the triangles, patch after patch
+  std::vector<std::size_t> patch_begin_; // patch p is patch_order_[patch_begin_[p], patch_begin_[p + 1])
+  std::vector<std::size_t> corner_vertex_;
+  std::vector<size_type> around_edge_;
+  std::vector<std::array<double, 3>> xyz_;
+};
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_ORIENT_SOUP_H

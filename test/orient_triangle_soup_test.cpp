@@ -1,0 +1,569 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Tests of orient_triangle_soup() and triangle_soup_to_face_graph(): orientation policies,
+// independence of the input order, non-manifold separation, the linear FaceGraph construction
+// (compared with CGAL's polygon_soup_to_polygon_mesh), kernel conversion, refused input.
+
+#include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/orient_triangle_soup.h>
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/triangle_soup_to_face_graph.h>
+
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+struct Soup
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::map<std::array<double, 3>, std::size_t> index; // welds equal coordinates while building
+
+  std::size_t point(double x, double y, double z)
+  {
+    const auto [it, inserted] = index.insert({{x, y, z}, points.size()});
+    if(inserted) points.emplace_back(x, y, z);
+    return it->second;
+  }
+  // An axis-aligned cube [o, o + s]^3, outward unless `inward`; `flip_one` reverses its first triangle.
+  void add_cube(double ox, double oy, double oz, double s, bool inward = false, bool flip_one = false)
+  {
+    std::size_t v[8];
+    for(int k = 0; k < 8; ++k) v[k] = point(ox + s * (k == 1 || k == 2 || k == 5 || k == 6), oy + s * (k == 2 || k == 3 || k == 6 || k == 7), oz + s * (k >= 4));
+    const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                              {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+    for(int f = 0; f < 12; ++f) {
+      Triangle t = {v[faces[f][0]], v[faces[f][1]], v[faces[f][2]]};
+      if(inward != (flip_one && f == 0)) std::swap(t[1], t[2]);
+      triangles.push_back(t);
+    }
+  }
+  // A Moebius strip of n quads (2 n triangles) around (cx, cy, 0).
+  void add_moebius(double cx, double cy, int n)
+  {
+    std::vector<std::array<std::size_t, 2>> rung(static_cast<std::size_t>(n));
+    const double pi = 3.14159265358979323846;
+    for(int i = 0; i < n; ++i) {
+      const double a = 2 * pi * i / n, h = a / 2;
+      for(int side = 0; side < 2; ++side) {
+        const double w = side ? 0.3 : -0.3;
+        const double r = 2 + w * std::cos(h);
+        rung[std::size_t(i)][std::size_t(side)] = point(cx + r * std::cos(a), cy + r * std::sin(a), w * std::sin(h));
+      }
+    }
+    for(int i = 0; i < n; ++i) {
+      const auto& p = rung[std::size_t(i)];
+      // The last rung meets the first one upside down: the half twist.
+      const std::array<std::size_t, 2> q = i + 1 < n ? rung[std::size_t(i + 1)] : std::array<std::size_t, 2>{rung[0][1], rung[0][0]};
+      triangles.push_back({p[0], p[1], q[0]});
+      triangles.push_back({p[1], q[1], q[0]});
+    }
+  }
+};
+
+// A soup with every kind of decision: two cubes sharing an edge, a book of three pages, two
+// triangles meeting at one vertex, a Moebius strip, a triangle repeated in both orientations,
+// an open sheet with one triangle reversed.
+Soup hostile_soup()
+{
+  Soup s;
+  s.add_cube(0, 0, 0, 1);
+  s.add_cube(1, 1, 0, 1);
+  const std::size_t a = s.point(10, 0, 0), b = s.point(10, 0, 1);
+  s.triangles.push_back({a, b, s.point(11, 0, 0)});
+  s.triangles.push_back({b, a, s.point(10, 1, 0)});
+  s.triangles.push_back({a, b, s.point(9, -1, 0)});
+  const std::size_t c = s.point(20, 0, 0);
+  s.triangles.push_back({c, s.point(21, 0, 0), s.point(21, 1, 0)});
+  s.triangles.push_back({c, s.point(19, 0, 0), s.point(19, -1, 0.5)});
+  s.add_moebius(30, 0, 12);
+  const std::size_t d = s.point(40, 0, 0), e = s.point(41, 0, 0), f = s.point(40, 1, 0);
+  s.triangles.push_back({d, e, f});
+  s.triangles.push_back({d, f, e});
+  const std::size_t g = s.point(50, 0, 0), h = s.point(51, 0, 0), i = s.point(51, 1, 0), j = s.point(50, 1, 0),
+                    k = s.point(52, 1, 0);
+  s.triangles.push_back({g, h, i});
+  s.triangles.push_back({g, i, j});
+  s.triangles.push_back({h, i, k}); // reversed against its neighbour
+  return s;
+}
+
+// The oriented triangles as a set, each rotated to start at its smallest index.
+std::set<Triangle> oriented_set(const std::vector<Triangle>& triangles)
+{
+  std::set<Triangle> result;
+  for(Triangle t : triangles) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    result.insert(t);
+  }
+  return result;
+}
+
+// The soup up to relabelling of its points: every triangle by the coordinates of its corners
+// (rotated to start at the smallest), and every point by the corners it is the point of.
+using Coordinates = std::array<double, 3>;
+using Triangle_key = std::array<Coordinates, 3>;
+std::pair<std::vector<Triangle_key>, std::vector<std::vector<std::pair<Triangle_key, int>>>>
+relabelling_invariant(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  std::vector<Triangle_key> keys;
+  std::vector<std::vector<std::pair<Triangle_key, int>>> corners_of(points.size());
+  std::vector<Triangle_key> tri_keys;
+  for(const Triangle& t : triangles) {
+    Triangle_key k;
+    for(int i = 0; i < 3; ++i) k[std::size_t(i)] = {points[t[std::size_t(i)]].x(), points[t[std::size_t(i)]].y(), points[t[std::size_t(i)]].z()};
+    const int r = int(std::min_element(k.begin(), k.end()) - k.begin());
+    std::rotate(k.begin(), k.begin() + r, k.end());
+    keys.push_back(k);
+    for(int i = 0; i < 3; ++i) corners_of[t[std::size_t((i + r) % 3)]].push_back({k, i});
+  }
+  for(auto& c : corners_of) std::sort(c.begin(), c.end());
+  std::sort(keys.begin(), keys.end());
+  std::sort(corners_of.begin(), corners_of.end());
+  return {keys, corners_of};
+}
+
+// A face graph flattened: points in vertex order, faces in face order as vertex numbers from
+// halfedge(f), and which vertices are on the border.
+struct Flat_mesh
+{
+  std::vector<Coordinates> points;
+  std::vector<std::vector<std::size_t>> faces;
+  std::vector<bool> border;
+  bool operator==(const Flat_mesh& o) const { return points == o.points && faces == o.faces && border == o.border; }
+};
+
+template <class PolygonMesh>
+Flat_mesh flatten(const PolygonMesh& mesh)
+{
+  Flat_mesh flat;
+  std::map<typename boost::graph_traits<PolygonMesh>::vertex_descriptor, std::size_t> number;
+  for(auto v : vertices(mesh)) {
+    number.insert({v, number.size()});
+    const auto& p = get(CGAL::vertex_point, mesh, v);
+    flat.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    flat.border.push_back(static_cast<bool>(is_border(v, mesh)));
+  }
+  for(auto f : faces(mesh)) {
+    std::vector<std::size_t> face;
+    for(auto v : vertices_around_face(halfedge(f, mesh), mesh)) face.push_back(number.at(v));
+    flat.faces.push_back(face);
+  }
+  return flat;
+}
+
+// What CGAL builds from the same oriented soup.
+// (A mesh with an isolated vertex is not valid for CGAL: `expect_valid` is false then.)
+template <class PolygonMesh>
+Flat_mesh cgal_reference(std::vector<Point> points, std::vector<Triangle> triangles, bool expect_valid)
+{
+  ST::orient_triangle_soup(points, triangles);
+  std::vector<std::vector<std::size_t>> polygons;
+  for(const Triangle& t : triangles) polygons.push_back({t[0], t[1], t[2]});
+  EXPECT_TRUE(PMP::is_polygon_soup_a_polygon_mesh(polygons));
+  PolygonMesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  EXPECT_EQ(CGAL::is_valid_polygon_mesh(mesh), expect_valid);
+  return flatten(mesh);
+}
+
+// Six times the signed volume of the triangles whose corners are all in [first, last).
+double signed_volume(const std::vector<Point>& points, const std::vector<Triangle>& triangles, std::size_t first, std::size_t last)
+{
+  double v = 0;
+  for(const Triangle& t : triangles) {
+    if(t[0] < first || t[0] >= last) continue;
+    v += CGAL::to_double(CGAL::determinant(points[t[0]] - CGAL::ORIGIN, points[t[1]] - CGAL::ORIGIN, points[t[2]] - CGAL::ORIGIN));
+  }
+  return v;
+}
+
+double cpu_seconds_since(std::clock_t start) { return double(std::clock() - start) / CLOCKS_PER_SEC; }
+
+// ---------------------------------------------------------------------------------------------
+// Orientation policies
+
+TEST(OrientTriangleSoup, Issue20CPRadialStillBoundsAVolume)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::IO::read_triangle_soup(std::string(SOUP_TOPOLOGY_DATA_DIR) + "/cad/kicad/CP_Radial_D10.0mm_P5.00mm.wrl", points, triangles);
+  {
+    Mesh mesh;
+    const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, mesh);
+    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+    ASSERT_TRUE(CGAL::is_closed(mesh));
+    EXPECT_TRUE(PMP::does_bound_a_volume(mesh));
+    EXPECT_EQ(r.orientation_flips, 0u);
+  }
+  ST::reconstruct_topology(points, triangles);
+  for(ST::Orientation_policy policy : {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT}) {
+    Mesh mesh;
+    const ST::Face_graph_output_report r =
+      ST::triangle_soup_to_face_graph(points, triangles, mesh, ST::parameters::orientation_policy(policy));
+    EXPECT_TRUE(PMP::does_bound_a_volume(mesh)) << int(policy);
+    EXPECT_EQ(r.orientation_flips, 0u);
+  }
+  // OUTWARD turns the inner shell (138 faces) outward: no longer a volume, as documented.
+  Mesh outward;
+  const ST::Face_graph_output_report r = ST::triangle_soup_to_face_graph(
+    points, triangles, outward, ST::parameters::orientation_policy(ST::Orientation_policy::OUTWARD));
+  EXPECT_EQ(r.orientation_flips, 138u);
+  EXPECT_FALSE(PMP::does_bound_a_volume(outward));
+  EXPECT_TRUE(PMP::is_outward_oriented(outward));
+}
+
+TEST(OrientTriangleSoup, Issue20NormalDirectionsBadIsOrientedInPlace)
+{
+  std::vector<Point> points, good_points;
+  std::vector<Triangle> triangles, good;
+  soup_test::read_data_mesh("real_defects/admesh/block/normal-directions-bad.stl", points, triangles);
+  soup_test::read_data_mesh("real_defects/admesh/block/normal-directions-good.stl", good_points, good);
+  ST::reconstruct_topology(points, triangles);
+  ASSERT_EQ(ST::Adjacency_tables(triangles, points.size()).inconsistently_oriented_edges().size(), 3u);
+  const std::size_t n = points.size();
+  const ST::Orientation_report r = ST::orient_triangle_soup(points, triangles);
+  EXPECT_GT(r.orientation_flips, 0u);
+  EXPECT_EQ(points.size(), n);
+  const ST::Adjacency_tables after(triangles, points.size());
+  EXPECT_TRUE(after.inconsistently_oriented_edges().empty());
+  EXPECT_TRUE(after.is_closed());
+  // A closed block: outward by the default policy, the volume of the good file (which
+  // triangulates and orients the block differently).
+  const double volume = signed_volume(points, triangles, 0, points.size());
+  EXPECT_GT(volume, 0);
+  EXPECT_NEAR(volume, std::abs(signed_volume(good_points, good, 0, good_points.size())), 1e-9 * volume);
+}
+
+TEST(OrientTriangleSoup, PoliciesOnNestedAndInsideOutCubes)
+{
+  // Cube 0 outward; cube 1 inside it, inward but with one triangle reversed; cube 2 alone,
+  // consistently inside out.
+  Soup s;
+  s.add_cube(0, 0, 0, 10);
+  s.add_cube(4, 4, 4, 1, true, true);
+  s.add_cube(20, 0, 0, 1, true);
+  auto volumes = [&](ST::Orientation_policy policy) {
+    std::vector<Point> p = s.points;
+    std::vector<Triangle> t = s.triangles;
+    ST::orient_triangle_soup(p, t, ST::parameters::orientation_policy(policy));
+    EXPECT_EQ(p.size(), s.points.size());
+    return std::array<double, 3>{signed_volume(p, t, 0, 8), signed_volume(p, t, 8, 16), signed_volume(p, t, 16, 24)};
+  };
+  const std::array<double, 3> bound = volumes(ST::Orientation_policy::BOUND_VOLUME);
+  EXPECT_GT(bound[0], 0);
+  EXPECT_LT(bound[1], 0);
+  EXPECT_GT(bound[2], 0);
+  const std::array<double, 3> keep = volumes(ST::Orientation_policy::KEEP_INPUT);
+  EXPECT_GT(keep[0], 0);
+  EXPECT_LT(keep[1], 0);
+  EXPECT_LT(keep[2], 0);
+  const std::array<double, 3> outward = volumes(ST::Orientation_policy::OUTWARD);
+  EXPECT_GT(outward[0], 0);
+  EXPECT_GT(outward[1], 0);
+  EXPECT_GT(outward[2], 0);
+  // The default is BOUND_VOLUME, through both entry points.
+  std::vector<Point> p = s.points;
+  std::vector<Triangle> t = s.triangles;
+  ST::orient_triangle_soup(p, t);
+  EXPECT_LT(signed_volume(p, t, 8, 16), 0);
+  EXPECT_GT(signed_volume(p, t, 16, 24), 0);
+  Mesh mesh;
+  ST::triangle_soup_to_face_graph(s.points, s.triangles, mesh);
+  EXPECT_EQ(num_faces(mesh), 36u);
+  EXPECT_TRUE(PMP::does_bound_a_volume(mesh));
+}
+
+TEST(OrientTriangleSoup, PigKeepsItsTriangles)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cgal_repair/pig.stl.xz", points, triangles);
+  ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(0.3));
+  for(ST::Orientation_policy policy :
+      {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT, ST::Orientation_policy::OUTWARD}) {
+    std::vector<Point> p = points;
+    std::vector<Triangle> t = triangles;
+    const ST::Orientation_report r = ST::orient_triangle_soup(p, t, ST::parameters::orientation_policy(policy));
+    EXPECT_EQ(t, triangles);
+    EXPECT_EQ(p.size(), points.size());
+    EXPECT_EQ(r.orientation_flips + r.duplicate_triangles + r.duplicated_points, 0u);
+  }
+  // Reversed as a whole, it comes back to the same triangles with every policy but KEEP_INPUT.
+  std::vector<Triangle> reversed = triangles;
+  for(Triangle& t : reversed) std::swap(t[1], t[2]);
+  std::vector<Point> p = points;
+  const ST::Orientation_report r = ST::orient_triangle_soup(p, reversed);
+  EXPECT_EQ(reversed, triangles);
+  EXPECT_EQ(r.orientation_flips, triangles.size());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Independence of the input order
+
+TEST(OrientTriangleSoup, Issue21ShuffledAlstom)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  std::mt19937 rng(7);
+  Flat_mesh first;
+  std::set<std::vector<std::size_t>> first_faces;
+  for(int shuffle = 0; shuffle < 4; ++shuffle) {
+    if(shuffle > 0) std::shuffle(triangles.begin(), triangles.end(), rng);
+    Mesh mesh;
+    ST::reconstruct_topology(points, triangles, mesh, ST::parameters::relative_tolerance(1e-2));
+    ASSERT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+    Flat_mesh flat = flatten(mesh);
+    std::set<std::vector<std::size_t>> face_set;
+    for(std::vector<std::size_t> f : flat.faces) {
+      std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+      face_set.insert(f);
+    }
+    if(shuffle == 0) {
+      first = flat;
+      first_faces = face_set;
+      continue;
+    }
+    EXPECT_EQ(flat.points, first.points) << "shuffle " << shuffle;
+    EXPECT_EQ(flat.border, first.border) << "shuffle " << shuffle;
+    EXPECT_EQ(face_set, first_faces) << "shuffle " << shuffle;
+  }
+}
+
+TEST(OrientTriangleSoup, Issue21HostileSoupUnderPermutations)
+{
+  const Soup s = hostile_soup();
+  std::vector<Point> reference_points = s.points;
+  std::vector<Triangle> reference = s.triangles;
+  const ST::Orientation_report r0 = ST::orient_triangle_soup(reference_points, reference);
+  EXPECT_EQ(r0.duplicate_triangles, 1u);
+  EXPECT_GT(r0.duplicated_points, 0u);
+  {
+    std::vector<std::vector<std::size_t>> polygons;
+    for(const Triangle& t : reference) polygons.push_back({t[0], t[1], t[2]});
+    EXPECT_TRUE(PMP::is_polygon_soup_a_polygon_mesh(polygons));
+    Mesh mesh;
+    ST::triangle_soup_to_face_graph(s.points, s.triangles, mesh);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  }
+  const std::set<Triangle> reference_set = oriented_set(reference);
+  const auto reference_shape = relabelling_invariant(reference_points, reference);
+  std::mt19937 rng(21);
+  for(int trial = 0; trial < 20; ++trial) {
+    // Triangles permuted (and rotated): the same points and the same oriented triangles.
+    std::vector<Point> p = s.points;
+    std::vector<Triangle> t = s.triangles;
+    std::shuffle(t.begin(), t.end(), rng);
+    for(Triangle& x : t) std::rotate(x.begin(), x.begin() + std::ptrdiff_t(rng() % 3), x.end());
+    const ST::Orientation_report r = ST::orient_triangle_soup(p, t);
+    EXPECT_EQ(p, reference_points) << "trial " << trial;
+    EXPECT_EQ(oriented_set(t), reference_set) << "trial " << trial;
+    EXPECT_EQ(r.orientation_flips, r0.orientation_flips);
+    EXPECT_EQ(r.duplicated_points, r0.duplicated_points);
+    // Points permuted too: the same soup up to relabelling.
+    std::vector<std::size_t> perm(s.points.size());
+    std::iota(perm.begin(), perm.end(), std::size_t(0));
+    std::shuffle(perm.begin(), perm.end(), rng);
+    std::vector<Point> q(s.points.size());
+    for(std::size_t i = 0; i < perm.size(); ++i) q[perm[i]] = s.points[i];
+    std::vector<Triangle> u = s.triangles;
+    for(Triangle& x : u) for(std::size_t& v : x) v = perm[v];
+    std::shuffle(u.begin(), u.end(), rng);
+    ST::orient_triangle_soup(q, u);
+    EXPECT_EQ(relabelling_invariant(q, u), reference_shape) << "trial " << trial;
+  }
+}
+
+TEST(OrientTriangleSoup, NonManifoldPiecesAreSeparatedIntoValidMeshes)
+{
+  // Two cubes sharing an edge: two closed cubes, the edge's two points duplicated once each.
+  Soup s;
+  s.add_cube(0, 0, 0, 1);
+  s.add_cube(1, 1, 0, 1);
+  ASSERT_EQ(s.points.size(), 14u);
+  Mesh mesh;
+  const ST::Face_graph_output_report r = ST::triangle_soup_to_face_graph(s.points, s.triangles, mesh);
+  EXPECT_EQ(r.duplicated_points, 2u);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  EXPECT_TRUE(CGAL::is_closed(mesh));
+  EXPECT_TRUE(PMP::does_bound_a_volume(mesh));
+  // A Moebius strip: one edge given up, a valid open mesh.
+  Soup m;
+  m.add_moebius(0, 0, 12);
+  Mesh strip;
+  ST::triangle_soup_to_face_graph(m.points, m.triangles, strip);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(strip));
+  EXPECT_EQ(num_faces(strip), 24u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The FaceGraph construction
+
+TEST(TriangleSoupToFaceGraph, SameMeshAsPolygonSoupToPolygonMesh)
+{
+  std::vector<std::pair<std::vector<Point>, std::vector<Triangle>>> inputs;
+  {
+    const Soup s = hostile_soup();
+    inputs.push_back({s.points, s.triangles});
+    Soup c;
+    c.add_cube(0, 0, 0, 1);
+    c.points.emplace_back(5, 5, 5); // isolated: kept as a vertex, as CGAL does
+    inputs.push_back({c.points, c.triangles});
+    std::vector<Point> p;
+    std::vector<Triangle> t;
+    soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", p, t);
+    ST::reconstruct_topology(p, t, ST::parameters::relative_tolerance(1e-2));
+    inputs.push_back({p, t});
+  }
+  for(std::size_t k = 0; k < inputs.size(); ++k) {
+    const auto& [points, triangles] = inputs[k];
+    const bool valid = (k != 1);
+    std::vector<Point> p = points;
+    std::vector<Triangle> t = triangles;
+    ST::orient_triangle_soup(p, t);
+    {
+      Mesh ours;
+      const ST::Face_graph_output_report r = ST::triangle_soup_to_face_graph(p, t, ours);
+      EXPECT_EQ(r.orientation_flips + r.duplicated_points + r.duplicate_triangles, 0u) << "input " << k;
+      EXPECT_EQ(CGAL::is_valid_polygon_mesh(ours), valid) << "input " << k;
+      EXPECT_TRUE(flatten(ours) == cgal_reference<Mesh>(points, triangles, valid)) << "input " << k;
+      Mesh direct;
+      ST::triangle_soup_to_face_graph(points, triangles, direct);
+      EXPECT_TRUE(flatten(direct) == flatten(ours)) << "input " << k;
+    }
+    {
+      CGAL::Polyhedron_3<Epick> ours;
+      ST::triangle_soup_to_face_graph(points, triangles, ours);
+      EXPECT_EQ(CGAL::is_valid_polygon_mesh(ours), valid) << "input " << k;
+      EXPECT_TRUE(flatten(ours) == cgal_reference<CGAL::Polyhedron_3<Epick>>(points, triangles, valid)) << "input " << k;
+    }
+  }
+  // What the mesh held before stays.
+  Soup c;
+  c.add_cube(0, 0, 0, 1);
+  Mesh twice;
+  ST::triangle_soup_to_face_graph(c.points, c.triangles, twice);
+  ST::triangle_soup_to_face_graph(c.points, c.triangles, twice);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(twice));
+  EXPECT_EQ(num_vertices(twice), 16u);
+  EXPECT_EQ(num_faces(twice), 24u);
+  EXPECT_TRUE(CGAL::is_closed(twice));
+}
+
+// Euler::add_face() per triangle is quadratic in the degree of a vertex: 20.8 s for this fan.
+TEST(TriangleSoupToFaceGraph, Issue21FanOf100000TrianglesIsLinear)
+{
+  const std::size_t n = 100000;
+  std::vector<Point> points = {Point(0, 0, 0)};
+  std::vector<Triangle> triangles;
+  for(std::size_t i = 0; i < n; ++i) {
+    const double a = 2 * 3.14159265358979323846 * double(i) / double(n);
+    points.emplace_back(std::cos(a), std::sin(a), 0);
+    triangles.push_back({0, i + 1, (i + 1) % n + 1});
+  }
+  Mesh mesh;
+  const std::clock_t start = std::clock();
+  ST::triangle_soup_to_face_graph(points, triangles, mesh);
+  const double seconds = cpu_seconds_since(start);
+  EXPECT_LT(seconds, 2.0);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  EXPECT_EQ(num_faces(mesh), n);
+  EXPECT_EQ(degree(*vertices(mesh).begin(), mesh), n);
+  RecordProperty("cpu_seconds", std::to_string(seconds));
+}
+
+// One 40,000-corner polygon triangulated as a fan from its first corner: 3.4 s with add_face().
+TEST(TriangleSoupToFaceGraph, Issue21FanPolygonOf40000CornersIsLinear)
+{
+  const std::size_t n = 40000;
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t i = 0; i < n; ++i) {
+    const double a = 2 * 3.14159265358979323846 * double(i) / double(n);
+    points.emplace_back(std::cos(a), std::sin(a), 0);
+  }
+  for(std::size_t i = 1; i + 1 < n; ++i) triangles.push_back({0, i, i + 1});
+  CGAL::Polyhedron_3<Epick> poly;
+  Mesh mesh;
+  const std::clock_t start = std::clock();
+  ST::triangle_soup_to_face_graph(points, triangles, mesh);
+  ST::triangle_soup_to_face_graph(points, triangles, poly);
+  const double seconds = cpu_seconds_since(start);
+  EXPECT_LT(seconds, 2.0);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(poly));
+  EXPECT_EQ(num_faces(mesh), n - 2);
+  EXPECT_EQ(num_faces(poly), n - 2);
+  RecordProperty("cpu_seconds", std::to_string(seconds));
+}
+
+TEST(TriangleSoupToFaceGraph, Issue20EpickPointsIntoAnEpeckPolyhedron)
+{
+  Soup s;
+  s.add_cube(0.5, 0.25, 0.125, 3);
+  CGAL::Polyhedron_3<Epeck> poly;
+  ST::triangle_soup_to_face_graph(s.points, s.triangles, poly);
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(poly));
+  EXPECT_TRUE(CGAL::is_closed(poly));
+  EXPECT_TRUE(PMP::is_outward_oriented(poly));
+  EXPECT_EQ(num_vertices(poly), 8u);
+  EXPECT_EQ(PMP::volume(poly), Epeck::FT(27));
+  CGAL::Surface_mesh<Epeck::Point_3> exact;
+  ST::triangle_soup_to_face_graph(s.points, s.triangles, exact);
+  EXPECT_TRUE(flatten(exact) == flatten(poly));
+}
+
+TEST(TriangleSoupToFaceGraph, Issue20NonFinitePointIsRefused)
+{
+  Soup s;
+  s.add_cube(0, 0, 0, 1);
+  s.points[3] = Point(0, std::numeric_limits<double>::quiet_NaN(), 0);
+  Mesh mesh;
+  try {
+    ST::triangle_soup_to_face_graph(s.points, s.triangles, mesh);
+    ADD_FAILURE() << "a NaN point was written";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("point 3"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(num_vertices(mesh), 0u);
+  s.points[3] = Point(0, 1, std::numeric_limits<double>::infinity());
+  std::vector<Triangle> t = s.triangles;
+  EXPECT_THROW(ST::orient_triangle_soup(s.points, t), ST::Invalid_input);
+  EXPECT_EQ(t, s.triangles);
+}
+
+} // namespace
