@@ -33,6 +33,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <random>
@@ -1085,3 +1086,71 @@ TEST(WriteTriangleSoup, Issue21SameMeshAsTheFaceGraphWriter)
 }
 
 } // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The orientation policy of the tool, and a written file that does not depend on the input order.
+
+TEST_F(HostileInput, Issue20OrientationOptionKeepsTheCavity)
+{
+  // CP_Radial bounds a volume as read: an outer shell and an inner one turned inward.
+  const std::string in = soup_test::data_file("cad/kicad/CP_Radial_D10.0mm_P5.00mm.wrl");
+  soup_test::Bounded_run r = run({"repair", in, "-o", output, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "orientation_flips"), 0);
+  r = run({"repair", in, "-o", output, "--json", "--orientation", "keep-input"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "orientation_flips"), 0);
+  r = run({"repair", in, "-o", output, "--json", "--orientation", "outward"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "orientation_flips"), 138) << "the inner shell turned outward";
+  expect_refused_unchanged({"repair", in, "-o", output, "--orientation", "inward"}, "--orientation takes");
+}
+
+// The triangles of a written OFF file as coordinate triples, each rotated to start at its
+// smallest corner (orientation kept), sorted.
+std::vector<std::array<Point, 3>> canonical_triangles(const std::string& off_file)
+{
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  ST::IO::read_OFF_polygons(read_whole(off_file), points, faces, off_file);
+  std::vector<std::array<Point, 3>> triangles;
+  for(const auto& f : faces) {
+    std::array<Point, 3> t{points[f[0]], points[f[1]], points[f[2]]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles.push_back(t);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+TEST_F(HostileInput, Issue21WrittenMeshDoesNotDependOnTheTriangleOrder)
+{
+  // ALSTOM_TEST4 at a relative tolerance of 1e-2: many non-manifold sites to separate and open
+  // parts to orient, where the written mesh once depended on the order of the triangles.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  std::mt19937 random(21);
+  std::vector<std::vector<std::array<Point, 3>>> results;
+  std::vector<std::string> reports;
+  for(int trial = 0; trial < 3; ++trial) {
+    if(trial > 0) std::shuffle(triangles.begin(), triangles.end(), random);
+    std::ostringstream off;
+    off << std::setprecision(17) << "OFF\n" << points.size() << " " << triangles.size() << " 0\n";
+    for(const Point& p : points) off << p.x() << " " << p.y() << " " << p.z() << "\n";
+    for(const Triangle& t : triangles) off << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    const std::string in = write_file(folder, "alstom" + std::to_string(trial) + ".off", off.str());
+    const soup_test::Bounded_run r = run({"repair", in, "-o", output, "--relative-tolerance", "1e-2", "--json"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    results.push_back(canonical_triangles(output));
+    // Everything but the file names must be the same.
+    std::string report = r.out;
+    report.erase(0, report.find("\"format\""));
+    reports.push_back(report);
+  }
+  EXPECT_GT(results[0].size(), 1000u);
+  for(int trial = 1; trial < 3; ++trial) {
+    EXPECT_EQ(results[trial], results[0]) << "trial " << trial;
+    EXPECT_EQ(reports[trial], reports[0]) << "trial " << trial;
+  }
+}

@@ -66,6 +66,7 @@ const char* usage_text =
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
+  "                       [--orientation bound-volume|keep-input|outward]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
@@ -75,6 +76,9 @@ const char* usage_text =
   "      to FILE.json. The report's counts (closed, border_edges, ...) describe the file written;\n"
   "      soup_* fields describe the repaired soup before the separation.\n"
   "      --self-intersections counts the pairs of written triangles that intersect.\n"
+  "      --orientation chooses how closed parts are turned: bound-volume (default: nested shells\n"
+  "      alternate, outermost outward, so a part with a cavity keeps it), keep-input (every part\n"
+  "      consistent as read keeps its orientation) or outward (every closed part outward).\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -203,6 +207,14 @@ int run_stats(const std::vector<std::string>& args)
   return 0;
 }
 
+ST::Orientation_policy parse_orientation_policy(const std::string& text)
+{
+  if(text == "bound-volume") return ST::Orientation_policy::BOUND_VOLUME;
+  if(text == "keep-input") return ST::Orientation_policy::KEEP_INPUT;
+  if(text == "outward") return ST::Orientation_policy::OUTWARD;
+  throw Usage_error("repair: --orientation takes bound-volume, keep-input or outward, not '" + text + "'");
+}
+
 double parse_number(const std::string& option, const std::string& text)
 {
   char* end = nullptr;
@@ -271,6 +283,7 @@ int run_repair(const std::vector<std::string>& args)
   std::string in, out, report_file;
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
+  ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   for(std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -285,6 +298,7 @@ int run_repair(const std::vector<std::string>& args)
     else if(a == "--check") check = true;
     else if(a == "--no-t-junctions") split = false;
     else if(a == "--self-intersections") self_intersections = true;
+    else if(a == "--orientation") orientation_policy = parse_orientation_policy(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(in.empty()) in = a;
     else throw Usage_error("repair: more than one input file ('" + in + "' and '" + a + "')");
@@ -319,7 +333,8 @@ int run_repair(const std::vector<std::string>& args)
 
   // What is written: repeated triangles left out, components oriented, non-manifold vertices
   // and edges separated by duplicated points. The report's statistics describe this soup.
-  const ST::Orientation_report orientation = ST::orient_triangle_soup(points, triangles);
+  const ST::Orientation_report orientation =
+    ST::orient_triangle_soup(points, triangles, ST::parameters::orientation_policy(orientation_policy));
   const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
   progress_on("oriented the soup");
   std::optional<std::size_t> intersecting;
