@@ -75,8 +75,9 @@ TEST(PatentCube, Figure7SplitGivesTables16To18AndClosesTheCube)
   // Table (18): T0 -> T8 T1a T12, T1a -> T1b T0 T4, T1b -> T2 T12 T1a, T12 -> T0 T1b T10.
   const std::array<std::array<Tables::size_type, 3>, 4> expected = {{{9, 1, 13}, {2, 0, 5}, {3, 13, 1}, {0, 2, 11}}};
   const Tables::size_type rows[4] = {0, 1, 2, 13};
-  for(int k = 0; k < 4; ++k)
-    for(int i = 0; i < 3; ++i) EXPECT_EQ(tables.neighbor(rows[k], i), expected[k][i]) << "row " << k << " edge " << i;
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t i = 0; i < 3; ++i)
+      EXPECT_EQ(tables.neighbor(rows[k], static_cast<int>(i)), expected[k][i]) << "row " << k << " edge " << i;
   EXPECT_TRUE(tables.is_closed());
   EXPECT_EQ(Tables(triangles, points.size()).number_of_border_edges(), 0u);
 }
@@ -267,7 +268,7 @@ TEST_P(TJunctionSoup, ClosedManifoldOrientedAndOrderIndependent)
   std::vector<Triangle> shuffled;
   for(std::size_t k : perm) {
     const Triangle& q = soup.triangles[k];
-    const int s = static_cast<int>(rng() % 3);
+    const std::size_t s = static_cast<std::size_t>(rng() % 3);
     shuffled.push_back({q[s], q[(s + 1) % 3], q[(s + 2) % 3]});
   }
   auto p2 = soup.points;
@@ -276,8 +277,8 @@ TEST_P(TJunctionSoup, ClosedManifoldOrientedAndOrderIndependent)
     std::multiset<std::array<std::array<double, 3>, 3>> out;
     for(const Triangle& q : tris) {
       std::array<std::array<double, 3>, 3> c;
-      for(int k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
-      const int s = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+      for(std::size_t k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
+      const std::size_t s = static_cast<std::size_t>(std::min_element(c.begin(), c.end()) - c.begin());
       out.insert({c[s], c[(s + 1) % 3], c[(s + 2) % 3]});
     }
     return out;
