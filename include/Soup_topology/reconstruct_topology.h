@@ -35,6 +35,7 @@
 #include <cstddef>
 #include <functional>
 #include <iterator>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -211,14 +212,24 @@ Reconstruction_report reconstruct_soup(const PointRange& points, const PointMap&
   const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
   const bool count_intersections = choose_parameter(get_parameter(np, internal_np::count_self_intersections), false);
   const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(kernel);
-  // The caller's visitor: a reference when given as `std::ref(v)`, otherwise a copy.
-  Default_snap_visitor default_visitor;
-  auto&& visitor_given =
-    choose_parameter(CGAL::parameters::get_parameter_reference(np, CGAL::internal_np::visitor), default_visitor);
+  // The caller's visitor: a reference when given as `std::ref(v)`, otherwise a copy. A visitor
+  // given by value comes back as a temporary, bound here directly so that it lives long enough
+  // to be copied (`choose_parameter` would return a reference to it that dangles).
+  auto&& visitor_given = CGAL::parameters::get_parameter_reference(np, CGAL::internal_np::visitor);
   using Visitor_given = decltype(visitor_given);
-  std::conditional_t<std::is_const<std::remove_reference_t<Visitor_given>>::value, std::decay_t<Visitor_given>,
-                     Visitor_given>
-    user_visitor = visitor_given;
+  constexpr bool no_visitor = std::is_same<std::decay_t<Visitor_given>, CGAL::internal_np::Param_not_found>::value;
+  constexpr bool by_reference =
+    std::is_lvalue_reference<Visitor_given>::value && !std::is_const<std::remove_reference_t<Visitor_given>>::value;
+  using Visitor_copy = std::conditional_t<no_visitor, Default_snap_visitor, std::decay_t<Visitor_given>>;
+  std::optional<Visitor_copy> visitor_copy;
+  if constexpr(!by_reference) {
+    if constexpr(no_visitor) visitor_copy.emplace();
+    else visitor_copy.emplace(visitor_given);
+  }
+  auto& user_visitor = *[&]() {
+    if constexpr(by_reference) return &visitor_given;
+    else return &*visitor_copy;
+  }();
 
   // Step 0: exact weld; a merged point is known by the first of the equal input points.
   {
