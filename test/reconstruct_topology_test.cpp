@@ -75,8 +75,9 @@ TEST(PatentCube, Figure7SplitGivesTables16To18AndClosesTheCube)
   // Table (18): T0 -> T8 T1a T12, T1a -> T1b T0 T4, T1b -> T2 T12 T1a, T12 -> T0 T1b T10.
   const std::array<std::array<Tables::size_type, 3>, 4> expected = {{{9, 1, 13}, {2, 0, 5}, {3, 13, 1}, {0, 2, 11}}};
   const Tables::size_type rows[4] = {0, 1, 2, 13};
-  for(int k = 0; k < 4; ++k)
-    for(int i = 0; i < 3; ++i) EXPECT_EQ(tables.neighbor(rows[k], i), expected[k][i]) << "row " << k << " edge " << i;
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t i = 0; i < 3; ++i)
+      EXPECT_EQ(tables.neighbor(rows[k], static_cast<int>(i)), expected[k][i]) << "row " << k << " edge " << i;
   EXPECT_TRUE(tables.is_closed());
   EXPECT_EQ(Tables(triangles, points.size()).number_of_border_edges(), 0u);
 }
@@ -267,7 +268,7 @@ TEST_P(TJunctionSoup, ClosedManifoldOrientedAndOrderIndependent)
   std::vector<Triangle> shuffled;
   for(std::size_t k : perm) {
     const Triangle& q = soup.triangles[k];
-    const int s = static_cast<int>(rng() % 3);
+    const std::size_t s = static_cast<std::size_t>(rng() % 3);
     shuffled.push_back({q[s], q[(s + 1) % 3], q[(s + 2) % 3]});
   }
   auto p2 = soup.points;
@@ -276,8 +277,8 @@ TEST_P(TJunctionSoup, ClosedManifoldOrientedAndOrderIndependent)
     std::multiset<std::array<std::array<double, 3>, 3>> out;
     for(const Triangle& q : tris) {
       std::array<std::array<double, 3>, 3> c;
-      for(int k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
-      const int s = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+      for(std::size_t k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
+      const std::size_t s = static_cast<std::size_t>(std::min_element(c.begin(), c.end()) - c.begin());
       out.insert({c[s], c[(s + 1) % 3], c[(s + 2) % 3]});
     }
     return out;
@@ -478,3 +479,293 @@ TEST(RepairCommand, RefusesBadInputAndNeverTouchesTheOutput)
 }
 
 } // namespace cli_test
+
+// ---------------------------------------------------------------------------------------------
+// Issue 20: what a CGAL user reaches for (named parameters, meshes as input, self-intersections).
+
+#include <CGAL/Point_set_3.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <Soup_topology/internal/triangulate_polygon.h>
+
+namespace issue20 {
+
+namespace ST = Soup_topology;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+// Two triangles of a square whose shared edge was written twice, 1e-4 apart (2 welds), and a
+// thin triangle whose two close corners may not be welded (a refusal).
+struct Weld_soup
+{
+  std::vector<Point> points = {Point(0, 0, 0),      Point(1, 0, 0), Point(0, 1, 0),      Point(1.0001, 0, 0),
+                               Point(0, 1.0001, 0), Point(1, 1, 0), Point(5, 5, 0),      Point(5.0001, 5, 0),
+                               Point(5, 6, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {4, 3, 5}, {6, 7, 8}};
+};
+
+struct Counting_visitor
+{
+  std::vector<std::pair<std::size_t, std::size_t>> merges, refusals;
+  void on_merge(std::size_t d, std::size_t r) { merges.emplace_back(d, r); }
+  void on_refusal(std::size_t v, std::size_t r, ST::Refusal_reason) { refusals.emplace_back(v, r); }
+};
+
+void expect_same_report(const ST::Reconstruction_report& a, const ST::Reconstruction_report& b)
+{
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.input_points, b.input_points);
+  EXPECT_EQ(a.input_triangles, b.input_triangles);
+  EXPECT_EQ(a.exact_duplicates, b.exact_duplicates);
+  EXPECT_EQ(a.snapped_vertices, b.snapped_vertices);
+  EXPECT_EQ(a.refused_welds(), b.refused_welds());
+  EXPECT_EQ(a.split_triangles, b.split_triangles);
+  EXPECT_EQ(a.border_edges_before, b.border_edges_before);
+  EXPECT_EQ(a.border_edges_after, b.border_edges_after);
+  EXPECT_EQ(a.non_manifold_edges_after, b.non_manifold_edges_after);
+  EXPECT_EQ(a.components, b.components);
+  EXPECT_EQ(a.output_points, b.output_points);
+  EXPECT_EQ(a.output_triangles, b.output_triangles);
+  EXPECT_EQ(a.max_displacement, b.max_displacement);
+  EXPECT_EQ(a.duplicate_triangles, b.duplicate_triangles);
+  EXPECT_EQ(a.duplicated_points, b.duplicated_points);
+}
+
+TEST(ReconstructTopology, Issue20VisitorCalledForEveryWeldAndRefusal)
+{
+  Weld_soup s;
+  Counting_visitor v;
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(s.points, s.triangles, CGAL::parameters::snapping_tolerance(1e-3).visitor(std::ref(v)));
+  EXPECT_EQ(r.snapped_vertices, 2u);
+  EXPECT_GE(r.refused_welds(), 1u);
+  EXPECT_EQ(v.merges.size(), r.snapped_vertices);
+  EXPECT_EQ(v.refusals.size(), r.refused_welds());
+  // The indices are those of the input points.
+  std::sort(v.merges.begin(), v.merges.end());
+  EXPECT_EQ(v.merges, (std::vector<std::pair<std::size_t, std::size_t>>{{3, 1}, {4, 2}}));
+  for(const auto& pr : v.refusals) {
+    EXPECT_TRUE(pr.first == 6 || pr.first == 7);
+    EXPECT_TRUE(pr.second == 6 || pr.second == 7);
+  }
+  // Given by copy, the visitor is still called (on the copy): the result is the same.
+  Weld_soup s2;
+  const ST::Reconstruction_report r2 =
+    ST::reconstruct_topology(s2.points, s2.triangles, CGAL::parameters::snapping_tolerance(1e-3).visitor(Counting_visitor()));
+  EXPECT_EQ(s2.triangles, s.triangles);
+  EXPECT_EQ(r2.snapped_vertices, r.snapped_vertices);
+}
+
+// Points stored as plain arrays: get builds a Point_3, put writes it back.
+struct Array_point_map
+{
+  using key_type = std::array<double, 3>;
+  using value_type = Point;
+  using reference = Point;
+  using category = boost::read_write_property_map_tag;
+  friend Point get(const Array_point_map&, const key_type& a) { return Point(a[0], a[1], a[2]); }
+  friend void put(const Array_point_map&, key_type& a, const Point& p) { a = {p.x(), p.y(), p.z()}; }
+};
+
+TEST(ReconstructTopology, Issue20PointMapOnArraysAndPointSet)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  const auto np = CGAL::parameters::snapping_tolerance(0.3);
+  std::vector<Point> p0 = points;
+  std::vector<Triangle> t0 = triangles;
+  const ST::Reconstruction_report r0 = ST::reconstruct_topology(p0, t0, np);
+
+  std::vector<std::array<double, 3>> arrays;
+  for(const Point& p : points) arrays.push_back({p.x(), p.y(), p.z()});
+  std::vector<Triangle> t1 = triangles;
+  const ST::Reconstruction_report r1 =
+    ST::reconstruct_topology(arrays, t1, CGAL::parameters::snapping_tolerance(0.3).point_map(Array_point_map()));
+  expect_same_report(r0, r1);
+  EXPECT_EQ(t1, t0);
+  ASSERT_EQ(arrays.size(), p0.size());
+  for(std::size_t i = 0; i < p0.size(); ++i) EXPECT_EQ(Point(arrays[i][0], arrays[i][1], arrays[i][2]), p0[i]);
+
+  CGAL::Point_set_3<Point> set;
+  for(const Point& p : points) set.insert(p);
+  std::vector<Triangle> t2 = triangles;
+  const ST::Reconstruction_report r2 =
+    ST::reconstruct_topology(set, t2, CGAL::parameters::snapping_tolerance(0.3).point_map(set.point_map()));
+  expect_same_report(r0, r2);
+  EXPECT_EQ(t2, t0);
+  ASSERT_EQ(set.size(), p0.size());
+  std::size_t k = 0;
+  for(auto idx : set) EXPECT_EQ(set.point(idx), p0[k++]);
+
+  // The soup-to-mesh overload reads through the map too.
+  Mesh m0, m1;
+  ST::reconstruct_topology(points, triangles, m0, np);
+  std::vector<std::array<double, 3>> arrays_in;
+  for(const Point& p : points) arrays_in.push_back({p.x(), p.y(), p.z()});
+  ST::reconstruct_topology(arrays_in, triangles, m1, CGAL::parameters::snapping_tolerance(0.3).point_map(Array_point_map()));
+  EXPECT_EQ(num_vertices(m1), num_vertices(m0));
+  EXPECT_EQ(num_faces(m1), num_faces(m0));
+}
+
+TEST(ReconstructTopology, Issue20AnyGeomTraitsAndChainedParameters)
+{
+  using SC = CGAL::Simple_cartesian<double>;
+  Weld_soup s0, s1, s2, s3;
+  const ST::Reconstruction_report r0 = ST::reconstruct_topology(s0.points, s0.triangles, CGAL::parameters::snapping_tolerance(1e-3));
+  const ST::Reconstruction_report r1 =
+    ST::reconstruct_topology(s1.points, s1.triangles, CGAL::parameters::snapping_tolerance(1e-3).geom_traits(SC()));
+  expect_same_report(r0, r1);
+  EXPECT_EQ(s1.triangles, s0.triangles);
+  EXPECT_EQ(s1.points, s0.points);
+  // A package parameter wraps a CGAL chain, and CGAL members may follow it.
+  const double diag = ST::internal::bounding_box_diagonal(s0.points, CGAL::Identity_property_map<Point>());
+  (void)diag;
+  const ST::Reconstruction_report r2 =
+    ST::reconstruct_topology(s2.points, s2.triangles, ST::parameters::relative_tolerance(1e-4).geom_traits(SC()));
+  const ST::Reconstruction_report r3 = ST::reconstruct_topology(
+    s3.points, s3.triangles, ST::parameters::relative_tolerance(1e-4, CGAL::parameters::geom_traits(SC())));
+  expect_same_report(r2, r3);
+  EXPECT_EQ(r2.snapped_vertices, 2u);
+  // Exact points through an inexact traits, and inexact points through exact traits.
+  std::vector<Epeck::Point_3> exact;
+  Weld_soup s4;
+  for(const Point& p : s4.points) exact.emplace_back(p.x(), p.y(), p.z());
+  const ST::Reconstruction_report r4 =
+    ST::reconstruct_topology(exact, s4.triangles, CGAL::parameters::snapping_tolerance(1e-3).geom_traits(Epick()));
+  EXPECT_EQ(s4.triangles, s0.triangles);
+  EXPECT_EQ(r4.snapped_vertices, r0.snapped_vertices);
+  Weld_soup s5;
+  ST::reconstruct_topology(s5.points, s5.triangles, CGAL::parameters::snapping_tolerance(1e-3).geom_traits(Epeck()));
+  EXPECT_EQ(s5.triangles, s0.triangles);
+  EXPECT_EQ(s5.points, s0.points);
+}
+
+// CGAL's stitching inputs loaded as meshes: the same result as the detour through a soup.
+TEST(ReconstructTopology, Issue20MeshInputEqualsTheSoupDetour)
+{
+  struct Case { const char* file; long stitch_borders_left; };
+  const Case cases[] = {
+    {"cgal_repair/quads_to_stitch.off", 12}, {"cgal_repair/data_stitching/incidence_3.off", 6},
+    {"cgal_repair/data_stitching/pinched.off", 56}, {"cgal_repair/data_stitching/deg_border.off", -1},
+    {"cgal_repair/data_stitching/incoherent_patch_orientation.off", -1},
+    {"cgal_repair/data_stitching/nm_cubes.off", -1}, {"cgal_repair/data_stitching/non_manifold.off", -1},
+    {"cgal_repair/data_stitching/non_manifold2.off", -1},
+  };
+  std::size_t loaded = 0;
+  for(const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(soup_test::data_file(c.file), mesh)) {
+      EXPECT_EQ(c.stitch_borders_left, -1) << "the trial loaded it as a mesh";
+      continue;
+    }
+    ++loaded;
+    // The detour.
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> polygons;
+    PMP::polygon_mesh_to_polygon_soup(mesh, points, polygons);
+    std::vector<Triangle> triangles;
+    for(const auto& poly : polygons)
+      if(poly.size() == 3) triangles.push_back({poly[0], poly[1], poly[2]});
+      else ST::internal::triangulate_polygon(points, poly, triangles);
+    Mesh detour;
+    const ST::Reconstruction_report expected = ST::reconstruct_topology(points, triangles, detour);
+
+    Mesh copy = mesh;
+    const ST::Reconstruction_report r = ST::reconstruct_topology(mesh);
+    expect_same_report(r, expected);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(mesh));
+    EXPECT_EQ(num_vertices(mesh), num_vertices(detour));
+    EXPECT_EQ(num_faces(mesh), num_faces(detour));
+    EXPECT_EQ(border_edges(mesh), border_edges(detour));
+    if(c.stitch_borders_left >= 0) {
+      EXPECT_EQ(border_edges(mesh), static_cast<std::size_t>(c.stitch_borders_left));
+      PMP::stitch_borders(copy);
+      EXPECT_EQ(border_edges(copy), static_cast<std::size_t>(c.stitch_borders_left));
+    }
+    // A Polyhedron_3 with its own point type gives the same.
+    CGAL::Polyhedron_3<Epeck> poly;
+    ASSERT_TRUE(CGAL::IO::read_polygon_mesh(soup_test::data_file(c.file), poly));
+    const ST::Reconstruction_report rp = ST::reconstruct_topology(poly);
+    expect_same_report(rp, expected);
+    EXPECT_TRUE(CGAL::is_valid_polygon_mesh(poly));
+  }
+  EXPECT_GE(loaded, 3u);
+
+  // A user vertex point map and a tolerance: the mesh keeps its map.
+  Mesh m;
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(soup_test::data_file("cgal_repair/quads_to_stitch.off"), m));
+  auto moved = m.add_property_map<Mesh::Vertex_index, Point>("v:moved").first;
+  for(auto v : vertices(m)) moved[v] = m.point(v) + Epick::Vector_3(10, 0, 0);
+  const ST::Reconstruction_report r =
+    ST::reconstruct_topology(m, CGAL::parameters::vertex_point_map(moved).snapping_tolerance(1e-6));
+  EXPECT_TRUE(CGAL::is_valid_polygon_mesh(m));
+  EXPECT_EQ(num_faces(m), r.output_triangles - r.duplicate_triangles);
+  for(auto v : vertices(m)) EXPECT_GE(moved[v].x(), 9.0);
+}
+
+TEST(ReconstructTopology, Issue20CountsSelfIntersectingPairs)
+{
+  // Two triangles crossing, two sharing an edge and folded onto each other, two sharing a vertex only.
+  std::vector<Point> points = {Point(0, 0, 0), Point(2, 0, 0), Point(0, 2, 0), Point(0.5, 0.5, -1), Point(0.5, 0.5, 1),
+                               Point(1, 1, 1)};
+  std::vector<Triangle> crossing = {{0, 1, 2}, {3, 4, 5}};
+  auto p = points;
+  ST::Reconstruction_report r = ST::reconstruct_topology(p, crossing, ST::parameters::count_self_intersections(true));
+  EXPECT_TRUE(r.self_intersections_counted);
+  EXPECT_EQ(r.self_intersecting_pairs, 1u);
+  p = points;
+  std::vector<Triangle> crossing2 = {{0, 1, 2}, {3, 4, 5}};
+  r = ST::reconstruct_topology(p, crossing2);
+  EXPECT_FALSE(r.self_intersections_counted);
+  EXPECT_EQ(r.self_intersecting_pairs, 0u);
+
+  std::vector<Point> fold_points = {Point(0, 0, 0), Point(2, 0, 0), Point(0, 2, 0), Point(1, 0.5, 0), Point(0, -2, 0)};
+  std::vector<Triangle> folded = {{0, 1, 2}, {1, 0, 3}};
+  auto fp = fold_points;
+  EXPECT_EQ(ST::reconstruct_topology(fp, folded, ST::parameters::count_self_intersections(true)).self_intersecting_pairs, 1u);
+  std::vector<Triangle> flat = {{0, 1, 2}, {1, 0, 4}};
+  fp = fold_points;
+  EXPECT_EQ(ST::reconstruct_topology(fp, flat, ST::parameters::count_self_intersections(true)).self_intersecting_pairs, 0u);
+  std::vector<Point> fan_points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(-1, 0, 0.5), Point(0, -1, 0.5)};
+  std::vector<Triangle> fan = {{0, 1, 2}, {0, 3, 4}};
+  EXPECT_EQ(ST::reconstruct_topology(fan_points, fan, ST::parameters::count_self_intersections(true)).self_intersecting_pairs, 0u);
+
+  // Pig closed at 0.3 still self-intersects: the count agrees with CGAL's on the mesh.
+  auto [pig_points, pig_triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  Mesh mesh;
+  r = ST::reconstruct_topology(pig_points, pig_triangles, mesh,
+                               ST::parameters::count_self_intersections(true, CGAL::parameters::snapping_tolerance(0.3)));
+  ASSERT_EQ(r.duplicated_points, 0u);
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+  PMP::self_intersections(mesh, std::back_inserter(pairs));
+  EXPECT_TRUE(r.closed());
+  EXPECT_EQ(r.self_intersecting_pairs, pairs.size());
+  EXPECT_GT(r.self_intersecting_pairs, 0u);
+}
+
+TEST(ReconstructTopology, Issue21RelativeToleranceOnHugeCoordinates)
+{
+  // The bounding-box diagonal of points spanning 1e300 is finite (1.7e300) though its square is not.
+  std::vector<Point> points = {Point(0, 0, 0), Point(1e300, 0, 0), Point(0, 1e300, 0), Point(0, 0, 1e300)};
+  EXPECT_DOUBLE_EQ(ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>()), std::sqrt(3.0) * 1e300);
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  ST::Reconstruction_report r;
+  EXPECT_NO_THROW(r = ST::reconstruct_topology(points, triangles, ST::parameters::relative_tolerance(1e-200)));
+  EXPECT_DOUBLE_EQ(r.tolerance, std::sqrt(3.0) * 1e100);
+  EXPECT_EQ(r.output_triangles, 4u);
+  EXPECT_TRUE(r.closed());
+  // A relative tolerance whose absolute value is too large is refused for that reason.
+  try {
+    ST::reconstruct_topology(points, triangles, ST::parameters::relative_tolerance(1e-6));
+    ADD_FAILURE() << "not refused";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
+  }
+}
+
+} // namespace issue20

@@ -301,7 +301,7 @@ public:
         const Query_point qa = approximate(points_[k]);
         const double bound = radius_bound(r2, qa.err);
         bool inside = std::isfinite(bound);
-        for(int i = 0; i < 3 && inside; ++i)
+        for(std::size_t i = 0; i < 3 && inside; ++i)
         {
           const double lo = origin_[i] + f.c[i] * cs;
           inside = qa.c[i] - lo > 2 * bound && (lo + cs) - qa.c[i] > 2 * bound;
@@ -334,7 +334,7 @@ public:
     const Query_point aa = approximate(a), ba = approximate(b);
     Segment_approx s;
     double len2 = 0;
-    for(int i = 0; i < 3; ++i)
+    for(std::size_t i = 0; i < 3; ++i)
     {
       s.a[i] = aa.c[i];
       s.d[i] = ba.c[i] - aa.c[i];
@@ -357,7 +357,7 @@ public:
     std::array<std::uint32_t, 3> ilo{}, ihi{};
     if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
     {
-      for(int i = 0; i < 3; ++i)
+      for(std::size_t i = 0; i < 3; ++i)
       {
         const double lo = std::min(aa.c[i], ba.c[i]) - bound;
         const double hi = std::max(aa.c[i], ba.c[i]) + bound;
@@ -381,7 +381,7 @@ public:
         // equations (26)-(27): the box's index range must meet [ilo, ihi] on every axis
         const unsigned shift = depth_ - nd.level;
         bool meets = true;
-        for(int i = 0; i < 3 && meets; ++i)
+        for(std::size_t i = 0; i < 3 && meets; ++i)
         {
           const std::uint64_t lo = std::uint64_t(f.c[i]) << shift;
           const std::uint64_t hi = ((std::uint64_t(f.c[i]) + 1) << shift) - 1;
@@ -534,10 +534,10 @@ private:
     double max_abs = 0, err = 0;
     for(std::size_t i = 0; i < n; ++i)
     {
-      const auto& p = get(pm, first[i]);
+      const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
       const std::pair<double, double> iv[3] = {CGAL::to_interval(p.x()), CGAL::to_interval(p.y()),
                                               CGAL::to_interval(p.z())};
-      for(int k = 0; k < 3; ++k)
+      for(std::size_t k = 0; k < 3; ++k)
       {
         if(!std::isfinite(iv[k].first) || !std::isfinite(iv[k].second))
           throw std::invalid_argument("Soup_topology::Octree: point " + std::to_string(i) +
@@ -577,7 +577,7 @@ private:
     {
       if constexpr(double_coordinates)
       {
-        const auto& p = get(pm, first[i]);
+        const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
         keys[i] = Key{code_of(std::array<double, 3>{{p.x(), p.y(), p.z()}}), std::uint32_t(i)};
       }
       else
@@ -697,7 +697,7 @@ private:
   }
 
   // integer address along `axis` of coordinate `x`, clamped; `widen` moves it one cell away
-  std::uint32_t index_of(double x, int axis, int widen) const
+  std::uint32_t index_of(double x, std::size_t axis, int widen) const
   {
     const double t = (x - origin_[axis]) * scale_;
     if(std::isnan(t))
@@ -729,7 +729,7 @@ private:
     r.err = 0;
     const std::pair<double, double> iv[3] = {CGAL::to_interval(p.x()), CGAL::to_interval(p.y()),
                                             CGAL::to_interval(p.z())};
-    for(int k = 0; k < 3; ++k)
+    for(std::size_t k = 0; k < 3; ++k)
     {
       r.c[k] = iv[k].first == iv[k].second ? iv[k].first : 0.5 * iv[k].first + 0.5 * iv[k].second;
       const double e = iv[k].second - iv[k].first;
@@ -783,7 +783,7 @@ private:
   {
     const double cs = cell_size_[nodes_[f.node].level];
     double d2 = 0;
-    for(int i = 0; i < 3; ++i)
+    for(std::size_t i = 0; i < 3; ++i)
     {
       const double lo = origin_[i] + f.c[i] * cs;
       const double g = std::max({lo - q[i], q[i] - (lo + cs), 0.});
@@ -810,7 +810,7 @@ private:
       t = t < 0 ? 0 : (t > 1 ? 1 : t);
     }
     double d2 = 0;
-    for(int i = 0; i < 3; ++i)
+    for(std::size_t i = 0; i < 3; ++i)
     {
       const double w = v[i] - t * s.d[i];
       d2 += w * w;
@@ -824,7 +824,7 @@ private:
     const double cs = cell_size_[nodes_[f.node].level];
     const double tol = 1e-9;
     double tmin = -tol, tmax = 1 + tol;
-    for(int i = 0; i < 3; ++i)
+    for(std::size_t i = 0; i < 3; ++i)
     {
       const double lo = origin_[i] + f.c[i] * cs - grow;
       const double hi = origin_[i] + f.c[i] * cs + cs + grow;

@@ -308,8 +308,8 @@ inline std::size_t out_degree(Vertex_adjacency_graph::size_type v, const Vertex_
   std::size_t d = 0;
   for(Adjacency_tables::size_type t : a.triangles_around_vertex(v)) {
     const int iv = a.local_index(t, v);
-    d += Vertex_adjacency_graph::is_canonical(a, t, iv) ? 1 : 0;
-    d += Vertex_adjacency_graph::is_canonical(a, t, (iv + 2) % 3) ? 1 : 0;
+    if(Vertex_adjacency_graph::is_canonical(a, t, iv)) ++d;
+    if(Vertex_adjacency_graph::is_canonical(a, t, (iv + 2) % 3)) ++d;
   }
   return d;
 }
@@ -347,7 +347,8 @@ inline std::size_t num_edges(const Vertex_adjacency_graph& g)
   const Adjacency_tables& a = g.tables();
   std::size_t count = 0;
   for(Adjacency_tables::size_type t = 0; t < a.number_of_triangles(); ++t)
-    for(int i = 0; i < 3; ++i) count += Vertex_adjacency_graph::is_canonical(a, t, i) ? 1 : 0;
+    for(int i = 0; i < 3; ++i)
+      if(Vertex_adjacency_graph::is_canonical(a, t, i)) ++count;
   return count;
 }
 

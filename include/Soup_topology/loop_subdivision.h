@@ -198,7 +198,7 @@ struct Loop_level
       const std::array<Index, 3> v = triangles[t];
       const Index e[3] = {static_cast<Index>(n + edge_of[3 * t]), static_cast<Index>(n + edge_of[3 * t + 1]),
                           static_cast<Index>(n + edge_of[3 * t + 2])};
-      for(int k = 0; k < 3; ++k) children[4 * t + std::size_t(k)] = {v[k], e[k], e[(k + 2) % 3]};
+      for(std::size_t k = 0; k < 3; ++k) children[4 * t + k] = {v[k], e[k], e[(k + 2) % 3]};
       children[4 * t + 3] = {e[0], e[1], e[2]};
       Index* ce = child_edges.data() + 12 * t;
       const Index inner = static_cast<Index>(2 * E + 3 * t);
@@ -562,7 +562,8 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_N
 
   const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
   const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
-  const unsigned int iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 1u);
+  const unsigned int iterations =
+    static_cast<unsigned int>(choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 1u));
   const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
   Adjacency_tables* tables = choose_parameter(get_parameter(np, internal_np::output_adjacency_tables),
                                               static_cast<Adjacency_tables*>(nullptr));

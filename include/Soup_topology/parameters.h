@@ -8,6 +8,9 @@
 // declared beside their algorithms and included here, so this header gives all of them. Each builder has a one-argument form
 // that starts a chain and a two-argument form that appends to an existing chain:
 //   Soup_topology::parameters::relative_tolerance(1e-6, CGAL::parameters::geom_traits(K()))
+// CGAL's own parameters chain as members (`.geom_traits(k).visitor(v)`), but CGAL 5.5 fixes the
+// list of members (no `combine` either): a package parameter therefore wraps a CGAL chain, as
+// above, and a CGAL member may follow it: `relative_tolerance(1e-6).geom_traits(K())`.
 
 #ifndef SOUP_TOPOLOGY_PARAMETERS_H
 #define SOUP_TOPOLOGY_PARAMETERS_H
@@ -34,6 +37,10 @@ namespace Soup_topology {
 /// the tolerance given as a fraction of the diagonal of the bounding box of the points
 /// (instead of CGAL's absolute `snapping_tolerance`); a `double`.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
+/// whether `reconstruct_topology()` counts the pairs of triangles of its result that intersect
+/// (more than in a shared vertex or edge), in `Reconstruction_report::self_intersecting_pairs`
+/// (default `false`: the count costs a box intersection over all triangles).
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(count_self_intersections_t, count_self_intersections)
 /// the largest number of weld/split rounds of `reconstruct_topology()` (default 8).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(maximum_number_of_rounds_t, maximum_number_of_rounds)
 /// whether `reconstruct_topology()` splits T-junctions (default `true`).
@@ -48,6 +55,7 @@ using CGAL::parameters::geom_traits;
 using CGAL::parameters::number_of_iterations;
 using CGAL::parameters::point_map;
 using CGAL::parameters::snapping_tolerance;
+using CGAL::parameters::vertex_point_map;
 using CGAL::parameters::visitor;
 } // namespace parameters
 

@@ -3,7 +3,7 @@
 //
 // The whole pipeline in one call: exact weld, adjacency tables, epsilon welding and T-junction
 // splitting iterated to a fixpoint, and the output into any CGAL MutableFaceGraph
-// (through triangle_soup_to_face_graph.h).
+// (through triangle_soup_to_face_graph.h); a FaceGraph with open seams is repaired in place.
 
 #ifndef SOUP_TOPOLOGY_RECONSTRUCT_TOPOLOGY_H
 #define SOUP_TOPOLOGY_RECONSTRUCT_TOPOLOGY_H
@@ -17,16 +17,28 @@
 #include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/soup_self_intersections.h>
+#include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/triangulate_polygon.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <iterator>
+#include <optional>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Soup_topology {
@@ -71,6 +83,12 @@ struct Reconstruction_report
   std::size_t duplicate_triangles = 0;      ///< triangles with the same three vertices as another, left out
   std::size_t orientation_flips = 0;        ///< triangles reversed to orient their component
   std::size_t duplicated_points = 0;        ///< points duplicated to separate non-manifold vertices and edges
+  // Asked for with `count_self_intersections(true)`.
+  bool self_intersections_counted = false;  ///< whether `self_intersecting_pairs` was computed
+  std::size_t self_intersecting_pairs = 0;  ///< pairs of output triangles that meet beyond a shared vertex or edge
+  // A mesh given as input (`reconstruct_topology(mesh, np)`).
+  std::size_t triangulated_polygons = 0;    ///< faces of more than 3 vertices cut into triangles
+  std::size_t unclipped_corners = 0;        ///< corners of such faces that no ear could be cut at (their triangles are left out)
 
   /// the total number of refused welds.
   std::size_t refused_welds() const
@@ -107,104 +125,140 @@ std::vector<std::size_t> remove_unreferenced_points(PointRange& points, Triangle
   return new_index;
 }
 
-} // namespace internal
+/// the geometric traits given by `np` for points read through a map of type `PointMap`.
+template <class PointMap, class NamedParameters>
+using Pipeline_geom_traits = typename CGAL::internal_np::Lookup_named_param_def<
+  CGAL::internal_np::geom_traits_t, NamedParameters,
+  typename CGAL::Kernel_traits<typename boost::property_traits<PointMap>::value_type>::Kernel>::type;
 
-/// \ingroup PkgSoupTopologyPipeline
-/// \brief repairs an indexed triangle soup in place: merges exactly equal points, builds the
-/// adjacency tables, then welds duplicate vertices within the tolerance (`snap_vertices()`) and
-/// splits T-junctions (`split_t_junctions()`) in rounds until a round changes nothing (a split
-/// can expose a new duplicate and a weld a new T-junction: Milenkovic's normalisation). Finally
-/// the points no triangle uses are removed.
-///
-/// Triangles that the exact weld collapses (two equal corners) are removed and counted. The
-/// output points are a subset of the input points (no coordinate is constructed), in input order.
-///
-/// \tparam PointRange a `std::vector`-like container of `Point_3`
-/// \tparam TriangleRange a `std::vector`-like container of triangles (3 indices each)
-///
-/// \cgalNamedParamsBegin
-///   \cgalParamNBegin{snapping_tolerance} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0: exact
-///     duplicates only} \cgalParamNEnd
-///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{the tolerance as a
-///     fraction of the bounding-box diagonal} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type}
-///     \cgalParamNEnd
-///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
-///   \cgalParamNBegin{do_split_t_junctions} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
-/// \cgalNamedParamsEnd
-/// \returns a `Reconstruction_report`.
-/// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
-///         in a face, a non-finite coordinate or an invalid tolerance; `points` and `triangles`
-///         are unchanged then.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters,
-          std::enable_if_t<internal::is_named_parameters<NamedParameters>::value, int> = 0>
-Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& triangles,
-                                           const NamedParameters& np = CGAL::parameters::default_values())
+/// `p` as a point of the traits: the same coordinates, exactly when the number types allow it.
+template <class PointOut, class FT, class PointIn>
+PointOut convert_point(const PointIn& p)
+{
+  if constexpr(std::is_same<PointIn, PointOut>::value)
+    return p;
+  else if constexpr(std::is_convertible<decltype(p.x()), FT>::value)
+    return PointOut(FT(p.x()), FT(p.y()), FT(p.z()));
+  else
+    return PointOut(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z())));
+}
+
+/// the visitor that `reconstruct_topology()` gives `snap_vertices()`: records every weld for the
+/// displacement and tells the caller's visitor, with the caller's indices.
+template <class User_visitor>
+struct Pipeline_visitor
+{
+  std::vector<std::size_t>* merged_into;
+  const std::vector<std::size_t>* input_index;
+  User_visitor* user;
+  void on_merge(std::size_t duplicate, std::size_t representative)
+  {
+    (*merged_into)[duplicate] = representative;
+    user->on_merge((*input_index)[duplicate], (*input_index)[representative]);
+  }
+  void on_refusal(std::size_t vertex, std::size_t representative, Refusal_reason reason)
+  {
+    user->on_refusal((*input_index)[vertex], (*input_index)[representative], reason);
+  }
+};
+
+/// the pipeline on the soup (`points`, `triangles`), read through `pm`, validated first. The
+/// points are copied once into `pts` (the traits' points) and the pipeline runs on the copy;
+/// `triangles` is repaired in place. On return `pts` holds the output points and
+/// `input_index[k]` is the index in `points` of the point that output point `k` is.
+template <class PointRange, class PointMap, class TriangleRange, class NamedParameters, class Geom_traits>
+Reconstruction_report reconstruct_soup(const PointRange& points, const PointMap& pm, TriangleRange& triangles,
+                                       const NamedParameters& np, const Geom_traits& kernel,
+                                       std::vector<typename Geom_traits::Point_3>& pts,
+                                       std::vector<std::size_t>& input_index)
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  using Point = typename PointRange::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
-  using FT = typename Kernel::FT;
+  using Point = typename Geom_traits::Point_3;
+  using FT = typename Geom_traits::FT;
 
   Reconstruction_report report;
-  report.input_points = points.size();
+  report.input_points = static_cast<std::size_t>(std::distance(points.begin(), points.end()));
   report.input_triangles = triangles.size();
   // Validate everything before changing anything.
   {
     std::size_t face_id = 0;
     for(const auto& f : triangles) {
-      if(internal::face_size(f) != 3)
-        throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
+      if(face_size(f) != 3)
+        throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(face_size(f)) +
                             " vertices; a triangle soup needs exactly 3");
       for(std::size_t k = 0; k < 3; ++k)
-        if(internal::corner(f, k, face_id) >= points.size())
+        if(corner(f, k, face_id) >= report.input_points)
           throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
-                              std::to_string(internal::corner(f, k, face_id)) + " is out of range (" +
-                              std::to_string(points.size()) + " points)");
-      const std::size_t a = internal::corner(f, 0, face_id), b = internal::corner(f, 1, face_id),
-                        c = internal::corner(f, 2, face_id);
+                              std::to_string(corner(f, k, face_id)) + " is out of range (" +
+                              std::to_string(report.input_points) + " points)");
+      const std::size_t a = corner(f, 0, face_id), b = corner(f, 1, face_id), c = corner(f, 2, face_id);
       if(a == b || b == c || c == a)
         throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" + std::to_string(a) +
                             ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
       ++face_id;
     }
   }
-  internal::check_finite_points(points, CGAL::Identity_property_map<Point>());
-  const FT eps = internal::resolve_tolerance<FT>(points, CGAL::Identity_property_map<Point>(), np);
+  check_finite_points(points, pm);
+  pts.clear();
+  pts.reserve(report.input_points);
+  for(const auto& e : points) pts.push_back(convert_point<Point, FT>(get(pm, e)));
+  input_index.resize(pts.size());
+  for(std::size_t i = 0; i < input_index.size(); ++i) input_index[i] = i;
+
+  const FT eps = resolve_tolerance<FT>(pts, CGAL::Identity_property_map<Point>(), np);
   report.tolerance = CGAL::to_double(eps);
   const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
   const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
-  const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const bool count_intersections = choose_parameter(get_parameter(np, internal_np::count_self_intersections), false);
   const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(kernel);
+  // The caller's visitor: a reference when given as `std::ref(v)`, otherwise a copy. A visitor
+  // given by value comes back as a temporary, bound here directly so that it lives long enough
+  // to be copied (`choose_parameter` would return a reference to it that dangles).
+  auto&& visitor_given = CGAL::parameters::get_parameter_reference(np, CGAL::internal_np::visitor);
+  using Visitor_given = decltype(visitor_given);
+  constexpr bool no_visitor = std::is_same<std::decay_t<Visitor_given>, CGAL::internal_np::Param_not_found>::value;
+  constexpr bool by_reference =
+    std::is_lvalue_reference<Visitor_given>::value && !std::is_const<std::remove_reference_t<Visitor_given>>::value;
+  using Visitor_copy = std::conditional_t<no_visitor, Default_snap_visitor, std::decay_t<Visitor_given>>;
+  std::optional<Visitor_copy> visitor_copy;
+  if constexpr(!by_reference) {
+    if constexpr(no_visitor) visitor_copy.emplace();
+    else visitor_copy.emplace(visitor_given);
+  }
+  auto& user_visitor = *[&]() {
+    if constexpr(by_reference) return &visitor_given;
+    else return &*visitor_copy;
+  }();
 
-  // Step 0: exact weld.
-  report.exact_duplicates = merge_duplicate_points(points, triangles);
+  // Step 0: exact weld; a merged point is known by the first of the equal input points.
+  {
+    const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map(pts, triangles);
+    report.exact_duplicates = input_index.size() - pts.size();
+    std::vector<std::size_t> first(pts.size());
+    for(std::size_t i = exact_index.size(); i-- > 0;) first[exact_index[i]] = input_index[i];
+    input_index.swap(first);
+  }
   report.collapsed_triangles = remove_collapsed_triangles(triangles);
 
   // Step 1: the tables.
-  Adjacency_tables tables(triangles, points.size());
+  Adjacency_tables tables(triangles, pts.size());
   report.border_edges_before = tables.number_of_border_edges();
   report.non_manifold_edges_before = tables.non_manifold_edges().size();
   report.components_before = tables.number_of_connected_components();
 
   // Steps 2 and 3, to a fixpoint.
-  std::vector<std::size_t> merged_into(points.size());
+  std::vector<std::size_t> merged_into(pts.size());
   for(std::size_t i = 0; i < merged_into.size(); ++i) merged_into[i] = i;
-  struct Recording_visitor
-  {
-    std::vector<std::size_t>* merged_into;
-    void on_merge(std::size_t d, std::size_t r) { (*merged_into)[d] = r; }
-    void on_refusal(std::size_t, std::size_t, Refusal_reason) {}
-  } recorder{&merged_into};
+  Pipeline_visitor<std::remove_reference_t<decltype(user_visitor)>> recorder{&merged_into, &input_index, &user_visitor};
   std::vector<std::size_t> sites;
   // A vertex that received welds is never moved in a later round (its welded points would move
   // farther than the tolerance); it may still receive more.
-  std::vector<char> holds_welds(points.size(), 0);
+  std::vector<char> holds_welds(pts.size(), 0);
   for(std::size_t round = 0; round < max_rounds; ++round) {
     ++report.rounds;
     const Snap_report s = snap_vertices(
-      points, triangles, tables,
+      pts, triangles, tables,
       CGAL::Named_function_parameters<const std::vector<char>*, internal_np::fixed_vertices_t,
                                       std::decay_t<decltype(weld_np.visitor(std::ref(recorder)))>>(
         &holds_welds, weld_np.visitor(std::ref(recorder))));
@@ -220,7 +274,7 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
     sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
     std::size_t splits = 0;
     if(do_split) {
-      const Split_report t = split_t_junctions(points, triangles, tables, weld_np);
+      const Split_report t = split_t_junctions(pts, triangles, tables, weld_np);
       report.t_junctions += t.t_junctions;
       report.split_triangles += t.split_triangles;
       report.refused_splits += t.refused_overlap + t.refused_degenerate + t.refused_flip;
@@ -234,13 +288,13 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
 
   // How far the points moved: every input point follows its exact-weld image (same coordinates)
   // and then the chain of welds; only the points of the soup that were welded can move.
-  typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
+  typename Geom_traits::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
   for(std::size_t v = 0; v < merged_into.size(); ++v) {
     if(merged_into[v] == v) continue;
     std::size_t w = merged_into[v];
     while(merged_into[w] != w) w = merged_into[w];
     report.max_displacement =
-      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(points[v], points[w]))));
+      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(pts[v], pts[w]))));
   }
 
   // Final counts, from the live tables (removing unused points below changes none of them).
@@ -248,20 +302,119 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
   report.non_manifold_edges_after = tables.non_manifold_edges().size();
   report.non_manifold_vertices_after = tables.non_manifold_vertices().size();
   report.components = tables.number_of_connected_components();
-  const std::size_t before = points.size();
-  internal::remove_unreferenced_points(points, triangles);
-  report.removed_points = before - points.size();
-  report.output_points = points.size();
+  const std::size_t before = pts.size();
+  const std::vector<std::size_t> kept_index = remove_unreferenced_points(pts, triangles);
+  for(std::size_t i = 0; i < kept_index.size(); ++i)
+    if(kept_index[i] != static_cast<std::size_t>(-1)) input_index[kept_index[i]] = input_index[i];
+  input_index.resize(pts.size());
+  report.removed_points = before - pts.size();
+  report.output_points = pts.size();
   report.output_triangles = triangles.size();
+  if(count_intersections) {
+    report.self_intersections_counted = true;
+    report.self_intersecting_pairs = count_soup_self_intersections(pts, triangles, kernel);
+  }
+  return report;
+}
+
+/// empties a FaceGraph, keeping its property maps (a vertex point map given by the caller
+/// stays valid) where the graph can.
+template <class PolygonMesh>
+auto clear_keeping_property_maps(PolygonMesh& mesh, int) -> decltype(mesh.clear_without_removing_property_maps(), void())
+{
+  mesh.clear_without_removing_property_maps();
+}
+template <class PolygonMesh>
+void clear_keeping_property_maps(PolygonMesh& mesh, long)
+{
+  CGAL::clear(mesh);
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief repairs an indexed triangle soup in place: merges exactly equal points, builds the
+/// adjacency tables, then welds duplicate vertices within the tolerance (`snap_vertices()`) and
+/// splits T-junctions (`split_t_junctions()`) in rounds until a round changes nothing (a split
+/// can expose a new duplicate and a weld a new T-junction: Milenkovic's normalisation). Finally
+/// the points no triangle uses are removed.
+///
+/// Triangles that the exact weld collapses (two equal corners) are removed and counted. The
+/// output points are a subset of the input points (no coordinate is constructed), in input order.
+///
+/// The points are read once through the point map into a `std::vector` of `geom_traits::Point_3`
+/// and the pipeline runs on that copy; at the end output point `k` is written into element `k`
+/// of `points` through the point map (the value read from the input element it comes from, so
+/// its coordinates are exactly the input ones, whatever the traits), and `points` is resized to
+/// the output points. Only the point map is written: other data held by the elements (another
+/// property of a `CGAL::Point_set_3`, say) is not moved with the points.
+///
+/// \tparam PointRange a range of elements with `size()` and `resize()` whose iterators are
+///         random access, e.g. `std::vector<Point_3>`, `std::vector<std::array<double, 3>>` (with a
+///         point map) or `CGAL::Point_set_3` (with its `point_map()`)
+/// \tparam TriangleRange a `std::vector`-like container of triangles (3 indices each)
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `points`}
+///     \cgalParamType{a model of `ReadWritePropertyMap` whose key is the value type of `PointRange`
+///     and whose value is a point of a CGAL kernel} \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the predicates and the point type of the
+///     pipeline (the points are converted to its `Point_3`)} \cgalParamType{a model of `SoupTopologyTraits`}
+///     \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+///   \cgalParamNBegin{snapping_tolerance} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0: exact
+///     duplicates only} \cgalParamNEnd
+///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{the tolerance as a
+///     fraction of the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{visitor} \cgalParamDescription{told every weld and every refused weld of every
+///     round, with the indices of `points` (a point merged by the exact weld is known by the first
+///     of the equal points)} \cgalParamType{a model of `SnapVisitor`, a copy or `std::ref(v)`}
+///     \cgalParamDefault{`Default_snap_visitor`} \cgalParamNEnd
+///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
+///   \cgalParamNBegin{do_split_t_junctions} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{count_self_intersections} \cgalParamDescription{count the pairs of output
+///     triangles that intersect beyond a shared vertex or edge (`geom_traits` then also needs
+///     `Triangle_3`, `Do_intersect_3`, `Coplanar_3`)} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns a `Reconstruction_report`.
+/// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
+///         in a face, a non-finite coordinate or an invalid tolerance; `points` and `triangles`
+///         are unchanged then.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters,
+          std::enable_if_t<internal::is_named_parameters<NamedParameters>::value &&
+                             !internal::is_named_parameters<std::remove_const_t<TriangleRange>>::value,
+                           int> = 0>
+Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& triangles,
+                                           const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::type;
+  using Geom_traits = internal::Pipeline_geom_traits<Point_map, NamedParameters>;
+  const Point_map pm =
+    CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
+  const Geom_traits gt =
+    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  std::vector<typename Geom_traits::Point_3> pts;
+  std::vector<std::size_t> input_index;
+  const Reconstruction_report report = internal::reconstruct_soup(points, pm, triangles, np, gt, pts, input_index);
+  // Output point k comes from input element input_index[k] >= k (the order is kept), so the
+  // elements read here are not yet overwritten.
+  for(std::size_t k = 0; k < input_index.size(); ++k) {
+    if(input_index[k] == k) continue;
+    const auto from = points.begin() + static_cast<std::ptrdiff_t>(input_index[k]);
+    const auto to = points.begin() + static_cast<std::ptrdiff_t>(k);
+    put(pm, *to, get(pm, *from));
+  }
+  points.resize(input_index.size());
   return report;
 }
 
 /// \ingroup PkgSoupTopologyPipeline
 /// \brief repairs a copy of the soup with `reconstruct_topology(points, triangles, np_soup)` and
 /// writes the result into `mesh` with `triangle_soup_to_face_graph()`; the report gathers both.
-/// `points` and `triangles` are not changed.
+/// `points` and `triangles` are not changed. The points written are those of `points` (read
+/// through `point_map`), so they must convert to the point type of `mesh`.
 ///
-/// \param np_soup the parameters of `reconstruct_topology()` for the soup
+/// \param np_soup the parameters of `reconstruct_topology()` for the soup (`point_map` may be
+///        a readable map only)
 /// \param np_mesh parameters for the mesh: `vertex_point_map`
 template <class PointRange, class TriangleRange, class PolygonMesh,
           class NamedParametersSoup = CGAL::parameters::Default_named_parameters,
@@ -271,8 +424,13 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
                                            const NamedParametersSoup& np_soup = CGAL::parameters::default_values(),
                                            const NamedParametersMesh& np_mesh = CGAL::parameters::default_values())
 {
-  using Point = typename PointRange::value_type;
-  std::vector<Point> pts(points.begin(), points.end());
+  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParametersSoup>::const_type;
+  using Geom_traits = internal::Pipeline_geom_traits<Point_map, NamedParametersSoup>;
+  using Point = typename boost::property_traits<Point_map>::value_type;
+  const Point_map pm =
+    CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np_soup, CGAL::internal_np::point_map));
+  const Geom_traits gt =
+    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np_soup, CGAL::internal_np::geom_traits));
   std::vector<std::array<std::size_t, 3>> tris;
   tris.reserve(triangles.size());
   std::size_t face_id = 0;
@@ -283,11 +441,89 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
     tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
     ++face_id;
   }
-  Reconstruction_report report = reconstruct_topology(pts, tris, np_soup);
-  const Face_graph_output_report out = triangle_soup_to_face_graph(pts, tris, mesh, np_mesh);
-  report.duplicate_triangles = out.duplicate_triangles;
-  report.orientation_flips = out.orientation_flips;
-  report.duplicated_points = out.duplicated_points;
+  std::vector<typename Geom_traits::Point_3> pts;
+  std::vector<std::size_t> input_index;
+  Reconstruction_report report = internal::reconstruct_soup(points, pm, tris, np_soup, gt, pts, input_index);
+  std::vector<Point> out;
+  out.reserve(input_index.size());
+  for(std::size_t i : input_index) out.push_back(get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(i))));
+  const Face_graph_output_report written = triangle_soup_to_face_graph(out, tris, mesh, np_mesh);
+  report.duplicate_triangles = written.duplicate_triangles;
+  report.orientation_flips = written.orientation_flips;
+  report.duplicated_points = written.duplicated_points;
+  return report;
+}
+
+/// \ingroup PkgSoupTopologyPipeline
+/// \brief repairs a FaceGraph in place: its faces become a soup (the detour
+/// `CGAL::Polygon_mesh_processing::polygon_mesh_to_polygon_soup()`, faces of more than three
+/// vertices cut into triangles by ear clipping), the soup is repaired by
+/// `reconstruct_topology(points, triangles, np)` and written back into `mesh` (emptied first)
+/// with `triangle_soup_to_face_graph()`. The points written are those of the mesh, unchanged;
+/// vertices no face uses are removed.
+///
+/// Faces are cut along the plane most parallel to their Newell normal; a corner at which no ear
+/// can be cut (a face that folds onto itself in that projection) leaves its triangles out and is
+/// counted in `Reconstruction_report::unclipped_corners`.
+///
+/// \tparam PolygonMesh a model of `MutableFaceGraph` (e.g. `CGAL::Surface_mesh`, `CGAL::Polyhedron_3`)
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the point of a vertex, read and
+///     then written for the new vertices} \cgalParamType{a model of `ReadWritePropertyMap` from
+///     `boost::graph_traits<PolygonMesh>::vertex_descriptor` to a point of a CGAL kernel}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, mesh)`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, visitor,
+///     maximum_number_of_rounds, do_split_t_junctions, count_self_intersections}
+///     \cgalParamDescription{as for the soup; the visitor's indices are those of the vertices in
+///     the order of `vertices(mesh)`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \returns a `Reconstruction_report`.
+/// \throws Invalid_input on a non-finite coordinate or an invalid tolerance; `mesh` is unchanged then.
+template <class PolygonMesh, class NamedParameters = CGAL::parameters::Default_named_parameters,
+          std::enable_if_t<internal::is_named_parameters<NamedParameters>::value &&
+                             !internal::is_named_parameters<PolygonMesh>::value,
+                           int> = 0>
+Reconstruction_report reconstruct_topology(PolygonMesh& mesh, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using Vertex_point_map = typename CGAL::GetVertexPointMap<PolygonMesh, NamedParameters>::type;
+  using Point = typename boost::property_traits<Vertex_point_map>::value_type;
+  using Geom_traits = internal::Pipeline_geom_traits<CGAL::Identity_property_map<Point>, NamedParameters>;
+  const Vertex_point_map vpm = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, CGAL::internal_np::vertex_point), get_property_map(CGAL::vertex_point, mesh));
+  const Geom_traits gt =
+    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  CGAL::Polygon_mesh_processing::polygon_mesh_to_polygon_soup(mesh, points, polygons,
+                                                              CGAL::parameters::vertex_point_map(vpm));
+  std::vector<std::array<std::size_t, 3>> triangles;
+  triangles.reserve(polygons.size());
+  std::size_t polygons_cut = 0, unclipped = 0;
+  for(const std::vector<std::size_t>& polygon : polygons) {
+    if(polygon.size() == 3) {
+      triangles.push_back({polygon[0], polygon[1], polygon[2]});
+    } else if(polygon.size() > 3) {
+      ++polygons_cut;
+      unclipped += internal::triangulate_polygon(points, polygon, triangles);
+    }
+  }
+  std::vector<typename Geom_traits::Point_3> pts;
+  std::vector<std::size_t> input_index;
+  Reconstruction_report report = internal::reconstruct_soup(points, CGAL::Identity_property_map<Point>(), triangles, np, gt,
+                                                            pts, input_index);
+  report.triangulated_polygons = polygons_cut;
+  report.unclipped_corners = unclipped;
+  std::vector<Point> out;
+  out.reserve(input_index.size());
+  for(std::size_t i : input_index) out.push_back(points[i]);
+  internal::clear_keeping_property_maps(mesh, 0);
+  const Face_graph_output_report written =
+    triangle_soup_to_face_graph(out, triangles, mesh, CGAL::parameters::vertex_point_map(vpm));
+  report.duplicate_triangles = written.duplicate_triangles;
+  report.orientation_flips = written.orientation_flips;
+  report.duplicated_points = written.duplicated_points;
   return report;
 }
 

@@ -2,8 +2,11 @@
 \ingroup PkgSoupTopologyConcepts
 \cgalConcept
 
-The visitor of `snap_vertices()`, given with `CGAL::parameters::visitor(v)` (a copy) or
-`CGAL::parameters::visitor(std::ref(v))` (the caller's object).
+The visitor of `snap_vertices()` and `reconstruct_topology()`, given with
+`CGAL::parameters::visitor(v)` (a copy) or `CGAL::parameters::visitor(std::ref(v))` (the caller's
+object). `reconstruct_topology()` calls it for every weld and every refused weld of every round,
+with the indices of its input points (a point merged by the exact weld is known by the first of
+the equal points; for a mesh, the index of the vertex in the order of `vertices(mesh)`).
 
 | Valid expression | Meaning |
 |---|---|

@@ -23,6 +23,12 @@ coordinates; no algorithm of the package constructs a point, except `loop_subdiv
 | `gt.construct_segment_3_object()(p, q)` | `GT::Segment_3` | |
 | `gt.compute_squared_distance_3_object()(p, q)` | `GT::FT` | the reported displacement |
 
+`reconstruct_topology()` converts the points to `GT::Point_3` (constructed from three `GT::FT`),
+so the traits need not be the kernel of the points. With
+`Soup_topology::parameters::count_self_intersections(true)` it also needs `GT::Triangle_3`,
+`gt.construct_triangle_3_object()`, `gt.coplanar_3_object()` and `gt.do_intersect_3_object()`
+on a triangle and a triangle or a segment, and `GT::Point_3::bbox()`.
+
 The sign of the dot product of two triangle normals (the flip test) is evaluated exactly by the
 package itself: intervals first, exact rationals when they do not decide, for `double`
 coordinates; the number type itself otherwise.

@@ -44,8 +44,14 @@ double bounding_box_diagonal(const PointRange& points, const PointMap& pm)
     any = true;
   }
   if(!any) return 0;
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  // The sides are scaled by the longest one before squaring: squaring sides near 1e300 would
+  // overflow although the diagonal, at most sqrt(3) times the longest side, is finite. A side
+  // itself overflows only when the box spans more than the largest double (then infinity).
+  const double side[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  const double longest = std::max(side[0], std::max(side[1], side[2]));
+  if(longest == 0 || !std::isfinite(longest)) return longest;
+  const double u[3] = {side[0] / longest, side[1] / longest, side[2] / longest};
+  return longest * std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
 }
 
 /// the absolute tolerance given by `np`: `snapping_tolerance` if present, else
