@@ -901,11 +901,16 @@ TEST_F(HostileInput, Issue21EndlessDevicesAreBounded)
     for(const char* ext : {"stl", "off", "obj", "ply", "wrl"}) {
       const std::string link = folder + "/" + std::string(device).substr(5) + "." + ext;
       std::filesystem::create_symlink(device, link);
-      const soup_test::Bounded_run r = soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "stats", link}, 2, 500);
+      // Random bytes as a binary STL announce a random facet count; about once in a thousand runs
+      // it is below the limit for devices (256 MiB), which is then read whole before it is
+      // refused: a bounded read, but one that may take longer than the others.
+      const bool may_read_to_the_limit = std::string(device) == "/dev/urandom" && std::string(ext) == "stl";
+      const double seconds = may_read_to_the_limit ? 20 : 2;
+      const soup_test::Bounded_run r = soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "stats", link}, seconds, 500);
       EXPECT_EQ(r.signal, 0) << link;
       EXPECT_EQ(r.exit_code, 2) << link << ": " << r.err;
       EXPECT_MESSAGE(r.err, link + ":");
-      EXPECT_LT(r.wall_seconds, 2.0) << link;
+      EXPECT_LT(r.wall_seconds, seconds) << link;
       EXPECT_LT(r.peak_rss_mb, 500u) << link;
     }
 }
