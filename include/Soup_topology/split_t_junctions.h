@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/exact_signs.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/tolerance_graph.h>
 
 #include <CGAL/Cartesian_converter.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -124,7 +125,11 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   const FT eps2 = eps * eps;
 
-  auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
+  // The points, read once: a readable map may return them by value.
+  std::vector<Point> point_copy;
+  point_copy.reserve(points.size());
+  for(const auto& e : points) point_copy.push_back(get(pm, e));
+  auto point = [&](std::size_t v) -> const Point& { return point_copy[v]; };
   typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
   typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
@@ -151,6 +156,19 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   border_points.reserve(border_vertices.size());
   for(size_type v : border_vertices) border_points.push_back(point(v));
   const Octree<Kernel> tree(border_points, CGAL::Identity_property_map<Point>(), kernel);
+  // With a dense cluster of border vertices, a short edge inside it would list the whole cluster,
+  // whose vertices are all within the tolerance of an end point (welds, not T-junctions): the
+  // grid skips the cells that lie within the tolerance of an end point, and the vertices that
+  // share a triangle with an end point (which may still be T-junctions) are added from the
+  // triangles. The vertices examined below are the same; the cluster is not listed per edge.
+  internal::Tolerance_grid<Kernel> grid(border_points, eps, kernel);
+  const bool dense = grid.usable() && grid.largest_cell() > internal::dense_cell_size;
+  const std::uint32_t not_border = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> border_index;
+  if(dense) {
+    border_index.assign(points.size(), not_border);
+    for(std::size_t f = 0; f < border_vertices.size(); ++f) border_index[border_vertices[f]] = static_cast<std::uint32_t>(f);
+  }
 
   auto near_segment = [&](size_type v, size_type a, size_type b) {
     return compare_sq(point(v), segment(point(a), point(b)), eps2) != CGAL::LARGER;
@@ -173,7 +191,19 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     const size_type apex = tables.vertex(e.triangle, (e.index + 2) % 3);
     pending[k] = internal::Pending_edge{a, b, {}};
     found.clear();
-    tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found));
+    if(dense && grid.is_short(point(a), point(b))) {
+      grid.for_each_point_near_box(point(a), point(b), [&](std::uint32_t f) {
+        if(near_segment(border_vertices[f], a, b)) found.push_back(f);
+      });
+      for(size_type end : {a, b})
+        for(size_type t : tables.triangles_around_vertex(end))
+          for(size_type w : tables.triangle(t))
+            if(border_index[w] != not_border && near_segment(w, a, b)) found.push_back(border_index[w]);
+      std::sort(found.begin(), found.end());
+      found.erase(std::unique(found.begin(), found.end()), found.end());
+    } else {
+      tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found));
+    }
     for(std::size_t f : found) {
       const size_type c = border_vertices[f];
       if(c == a || c == b || c == apex) continue;
@@ -265,27 +295,48 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     if(t == Adjacency_tables::border_edge) continue;
     const size_type apex = tables.vertex(t, (i + 2) % 3);
     // Refuse the vertices whose fan triangle (previous, c, apex) or (c, next, apex) would be
-    // degenerate or flipped relative to (a, b, apex); repeat until the whole fan is valid.
-    for(bool changed_fan = true; changed_fan && !pe.on_edge.empty();) {
-      changed_fan = false;
+    // degenerate or flipped relative to (a, b, apex): the first failing fan triangle along the
+    // edge loses its on-edge vertex (the one nearer b when both are), until the whole fan is
+    // valid. The fan before a failure is unchanged by the drop, so the scan resumes there: one
+    // pass over a doubly linked chain, linear in the number of vertices on the edge.
+    if(!pe.on_edge.empty()) {
+      const std::size_t m = pe.on_edge.size();
       std::vector<size_type> chain;
+      chain.reserve(m + 2);
       chain.push_back(pe.a);
       chain.insert(chain.end(), pe.on_edge.begin(), pe.on_edge.end());
       chain.push_back(pe.b);
-      for(std::size_t k = 0; k + 1 < chain.size(); ++k) {
-        const Point& p = point(chain[k]);
-        const Point& q = point(chain[k + 1]);
+      const std::size_t last = m + 1;
+      std::vector<std::size_t> next(m + 2), previous(m + 2);
+      for(std::size_t j = 0; j <= last; ++j) { next[j] = j + 1; previous[j] = j == 0 ? 0 : j - 1; }
+      std::vector<char> dropped(m + 2, 0);
+      std::size_t left = 0;
+      while(left != last && next[0] != last) {
+        const std::size_t right = next[left];
+        const Point& p = point(chain[left]);
+        const Point& q = point(chain[right]);
         const bool degenerate = collinear(p, q, point(apex));
         const bool flipped = !degenerate &&
           internal::sign_of_normal_dot(point(pe.a), point(pe.b), point(apex), p, q, point(apex)) != CGAL::POSITIVE;
-        if(!degenerate && !flipped) continue;
-        // Drop the on-edge vertex of this fan triangle (the one nearer b when both are).
-        const std::size_t drop = (k + 1 < chain.size() - 1) ? k + 1 : k;
+        if(!degenerate && !flipped) { left = right; continue; }
         if(degenerate) ++report.refused_degenerate; else ++report.refused_flip;
-        pe.on_edge.erase(pe.on_edge.begin() + static_cast<std::ptrdiff_t>(drop - 1));
-        changed_fan = true;
-        break;
+        if(right != last) {
+          dropped[right] = 1;
+          next[left] = next[right];
+          previous[next[right]] = left;
+        } else {
+          // left is an on-edge vertex: the loop stops when none is left.
+          dropped[left] = 1;
+          const std::size_t before = previous[left];
+          next[before] = last;
+          previous[last] = before;
+          left = before;
+        }
       }
+      std::size_t kept = 0;
+      for(std::size_t j = 1; j <= m; ++j)
+        if(!dropped[j]) pe.on_edge[kept++] = chain[j];
+      pe.on_edge.resize(kept);
     }
     if(pe.on_edge.empty()) continue;
     report.t_junctions += pe.on_edge.size();
