@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,59 @@ CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Po
   return CGAL::compare(d1, d2);
 }
 
+/// `true` if the squared distance of `p` and `q`, computed in double, is clearly below `bound2`
+/// (a squared distance in double, far above underflow): the exact comparison then says so too.
+/// For double coordinates only (otherwise `false`: ask the exact predicate).
+template <class Point>
+bool surely_within(const Point& p, const Point& q, double bound2)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+    return bound2 > 1e-250 && dx * dx + dy * dy + dz * dz < bound2 * (1 - 1e-12);
+  } else {
+    (void)p; (void)q; (void)bound2;
+    return false;
+  }
+}
+
+/// The kernel, with a `Compare_squared_distance_3` that first accepts, in double, a point clearly
+/// within the bound of a segment's end point (or of the other point), then asks the kernel. The
+/// answers are the kernel's; the shortcut spares the exact fallback that the filtered
+/// point-segment predicate takes for a point equal to the segment's target, as every border
+/// vertex is for the border edges that end at it.
+template <class Kernel>
+struct Kernel_with_near_end_shortcut : public Kernel
+{
+  using Point_3 = typename Kernel::Point_3;
+  using Segment_3 = typename Kernel::Segment_3;
+  using FT = typename Kernel::FT;
+
+  struct Compare_squared_distance_3
+  {
+    typename Kernel::Compare_squared_distance_3 base;
+    using result_type = CGAL::Comparison_result;
+    CGAL::Comparison_result operator()(const Point_3& p, const Point_3& q, const FT& bound2) const
+    {
+      if(surely_within(p, q, CGAL::to_double(bound2))) return CGAL::SMALLER;
+      return base(p, q, bound2);
+    }
+    CGAL::Comparison_result operator()(const Point_3& p, const Segment_3& s, const FT& bound2) const
+    {
+      const double b = CGAL::to_double(bound2);
+      if(surely_within(p, s.source(), b) || surely_within(p, s.target(), b)) return CGAL::SMALLER;
+      return base(p, s, bound2);
+    }
+  };
+
+  Kernel_with_near_end_shortcut() = default;
+  explicit Kernel_with_near_end_shortcut(const Kernel& kernel) : Kernel(kernel) {}
+  Compare_squared_distance_3 compare_squared_distance_3_object() const
+  {
+    return Compare_squared_distance_3{Kernel::compare_squared_distance_3_object()};
+  }
+};
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyTJunctions
@@ -97,6 +151,14 @@ CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Po
 /// table (17) (`Adjacency_tables::split_triangle()`). A vertex whose split would create a
 /// degenerate triangle or reverse a normal (exact predicates) is refused.
 /// No point is constructed: splits reuse existing vertices.
+///
+/// **Dense clusters.** Where a cell of a grid whose cells have a diagonal just below the tolerance
+/// holds more than 64 border vertices, a border edge shorter than twice the tolerance does not
+/// list the cells that lie entirely within the tolerance of one of its end points: their
+/// vertices are welds of that end point, not T-junctions, except those that share a triangle with
+/// it, which are taken from the triangles. The vertices examined, and so every decision, are the
+/// same; a cluster of n border vertices within the tolerance of each other is not listed once per
+/// edge (n^2 work). The fan check along an edge is linear in the number of vertices on it.
 ///
 /// New triangles are appended to `triangles` (which must support `push_back`), in the order of
 /// the border edges, then along each edge.
@@ -155,7 +217,8 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   std::vector<Point> border_points;
   border_points.reserve(border_vertices.size());
   for(size_type v : border_vertices) border_points.push_back(point(v));
-  const Octree<Kernel> tree(border_points, CGAL::Identity_property_map<Point>(), kernel);
+  using Tree_traits = internal::Kernel_with_near_end_shortcut<Kernel>;
+  const Octree<Tree_traits> tree(border_points, CGAL::Identity_property_map<Point>(), Tree_traits(kernel));
   // With a dense cluster of border vertices, a short edge inside it would list the whole cluster,
   // whose vertices are all within the tolerance of an end point (welds, not T-junctions): the
   // grid skips the cells that lie within the tolerance of an end point, and the vertices that
@@ -170,12 +233,21 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     for(std::size_t f = 0; f < border_vertices.size(); ++f) border_index[border_vertices[f]] = static_cast<std::uint32_t>(f);
   }
 
+  // A vertex clearly within the tolerance of an end point (in double, for double coordinates) is
+  // within it of the segment: the exact predicate is asked only when that does not decide (it
+  // is slow on the tiny segments of a dense cluster).
+  const double eps2d = CGAL::to_double(eps2);
   auto near_segment = [&](size_type v, size_type a, size_type b) {
+    if(internal::surely_within(point(v), point(a), eps2d) || internal::surely_within(point(v), point(b), eps2d)) return true;
     return compare_sq(point(v), segment(point(a), point(b)), eps2) != CGAL::LARGER;
   };
-  auto near_vertex = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), eps2) != CGAL::LARGER; };
+  auto near_vertex = [&](size_type v, size_type a) {
+    return internal::surely_within(point(v), point(a), eps2d) || compare_sq(point(v), point(a), eps2) != CGAL::LARGER;
+  };
   const FT four_eps2 = 4 * eps2;
-  auto near_vertex2 = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), four_eps2) != CGAL::LARGER; };
+  auto near_vertex2 = [&](size_type v, size_type a) {
+    return internal::surely_within(point(v), point(a), 4 * eps2d) || compare_sq(point(v), point(a), four_eps2) != CGAL::LARGER;
+  };
   auto share_triangle = [&](size_type u, size_type v) {
     for(size_type t : tables.triangles_around_vertex(u)) if(tables.local_index(t, v) >= 0) return true;
     return false;
@@ -202,7 +274,12 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
       std::sort(found.begin(), found.end());
       found.erase(std::unique(found.begin(), found.end()), found.end());
     } else {
-      tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found));
+      // The same answer by either strategy; the index-space box of a long segment is most of the
+      // workspace, so long segments cull the boxes along the segment instead.
+      const double length2 = CGAL::to_double(kernel.compute_squared_distance_3_object()(point(a), point(b)));
+      const Segment_query_strategy strategy = length2 > 64 * eps2d ? Segment_query_strategy::NEIGHBORHOOD_CULLING
+                                                                   : tree.segment_query_strategy();
+      tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found), strategy);
     }
     for(std::size_t f : found) {
       const size_type c = border_vertices[f];

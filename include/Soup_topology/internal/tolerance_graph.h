@@ -93,13 +93,13 @@ public:
     std::array<double, 3> hi{{-lo[0], -lo[1], -lo[2]}};
     for(std::size_t i = 0; i < n; ++i) {
       approx_[i] = {{CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y()), CGAL::to_double(points[i].z())}};
-      for(int k = 0; k < 3; ++k) {
+      for(std::size_t k = 0; k < 3; ++k) {
         lo[k] = std::min(lo[k], approx_[i][k]);
         hi[k] = std::max(hi[k], approx_[i][k]);
       }
     }
     double magnitude = 0, extent = 0;
-    for(int k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k) {
       magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
       extent = std::max(extent, hi[k] - lo[k]);
     }
@@ -112,7 +112,7 @@ public:
     std::vector<std::pair<Key, std::uint32_t>> keyed(n);
     for(std::size_t i = 0; i < n; ++i) {
       Key key;
-      for(int k = 0; k < 3; ++k) key[k] = static_cast<std::int64_t>(std::floor((approx_[i][k] - origin_[k]) / side_));
+      for(std::size_t k = 0; k < 3; ++k) key[k] = static_cast<std::int64_t>(std::floor((approx_[i][k] - origin_[k]) / side_));
       keyed[i] = {key, static_cast<std::uint32_t>(i)};
     }
     std::sort(keyed.begin(), keyed.end());
@@ -124,7 +124,7 @@ public:
       c.key = keyed[i].first;
       c.lo = c.hi = approx_[keyed[i].second];
       while(j < n && keyed[j].first == c.key) {
-        for(int k = 0; k < 3; ++k) {
+        for(std::size_t k = 0; k < 3; ++k) {
           c.lo[k] = std::min(c.lo[k], approx_[keyed[j].second][k]);
           c.hi[k] = std::max(c.hi[k], approx_[keyed[j].second][k]);
         }
@@ -203,7 +203,7 @@ public:
     const std::array<double, 3> bc{{CGAL::to_double(b.x()), CGAL::to_double(b.y()), CGAL::to_double(b.z())}};
     const double e = CGAL::to_double(eps_);
     Key low, high;
-    for(int k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k) {
       low[k] = static_cast<std::int64_t>(std::floor((std::min(ac[k], bc[k]) - e - origin_[k]) / side_)) - 1;
       high[k] = static_cast<std::int64_t>(std::floor((std::max(ac[k], bc[k]) + e - origin_[k]) / side_)) + 1;
     }
@@ -224,7 +224,7 @@ private:
   bool box_within(const Cell& c, const std::array<double, 3>& p) const
   {
     double d2 = 0;
-    for(int k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k) {
       const double d = std::max(std::abs(c.lo[k] - p[k]), std::abs(c.hi[k] - p[k]));
       d2 += d * d;
     }
@@ -240,7 +240,7 @@ private:
   bool boxes_apart(const Cell& a, const Cell& b) const
   {
     double gap2 = 0;
-    for(int k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k) {
       const double g = std::max({0.0, a.lo[k] - b.hi[k], b.lo[k] - a.hi[k]});
       gap2 += g * g;
     }
