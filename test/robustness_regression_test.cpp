@@ -10,6 +10,8 @@
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/snap_vertices.h>
 
+#include "test_utilities.h"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -17,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -92,6 +95,46 @@ const std::vector<Coordinates> alstom_points = {
   {0x1.9aaa63a6c5772p+6, 0x1.ce929108c31e6p+6, 0x1.8351a9ff5005fp+8}};
 const std::vector<Triangle> alstom_triangles = {{0, 1, 2}, {3, 4, 5}, {2, 1, 6}, {5, 7, 8}, {7, 9, 8}};
 const double alstom_eps = 0x1.e8553dd9ce2a7p+2;
+
+// Issue 21 (item 13): ALSTOM_TEST4 at 1e-2 of its diagonal, triangles shuffled and rotated: the
+// number of ambiguous sites differed from one order to the next (57, 45, 47, 44, ...): a site
+// was listed by its smallest vertex index, so two sites sharing that vertex under one numbering
+// were one site, and two under another. Every count of the report must be the same.
+TEST(RobustnessRegression, Issue21AmbiguousCountDoesNotDependOnTriangleOrder)
+{
+  std::vector<Epick::Point_3> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  auto repair = [&](unsigned seed) {
+    std::vector<Epick::Point_3> p = points;
+    std::vector<Triangle> t = triangles;
+    std::mt19937 rng(seed);
+    if(seed != 0) {
+      std::shuffle(t.begin(), t.end(), rng);
+      for(Triangle& x : t) std::rotate(x.begin(), x.begin() + rng() % 3, x.end());
+    }
+    const ST::Reconstruction_report r = ST::reconstruct_topology(p, t, ST::parameters::relative_tolerance(1e-2));
+    return std::make_pair(r, geometry(p, t));
+  };
+  const auto [a, a_geometry] = repair(0);
+  EXPECT_GT(a.ambiguous_sites, 0u);
+  for(unsigned seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE("order " + std::to_string(seed));
+    const auto [b, b_geometry] = repair(seed);
+    EXPECT_EQ(a.ambiguous_sites, b.ambiguous_sites);
+    EXPECT_EQ(a.ambiguous_t_junctions, b.ambiguous_t_junctions);
+    EXPECT_EQ(a.snapped_vertices, b.snapped_vertices);
+    EXPECT_EQ(a.clusters, b.clusters);
+    EXPECT_EQ(a.refused_same_triangle, b.refused_same_triangle);
+    EXPECT_EQ(a.refused_flip, b.refused_flip);
+    EXPECT_EQ(a.refused_degenerate, b.refused_degenerate);
+    EXPECT_EQ(a.t_junctions, b.t_junctions);
+    EXPECT_EQ(a.split_triangles, b.split_triangles);
+    EXPECT_EQ(a.rounds, b.rounds);
+    EXPECT_EQ(a.border_edges_after, b.border_edges_after);
+    EXPECT_EQ(a_geometry, b_geometry);
+  }
+}
 
 } // namespace
 

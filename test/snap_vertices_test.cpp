@@ -6,9 +6,15 @@
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
+#include <Soup_topology/Octree.h>
 #include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/tolerance_graph.h>
 
+#include "bounded_run.h"
 #include "test_utilities.h"
+
+#include <CGAL/Point_set_3.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -18,7 +24,10 @@
 
 #include <algorithm>
 #include <array>
+#include <ctime>
+#include <fstream>
 #include <functional>
+#include <map>
 #include <numeric>
 #include <random>
 #include <set>
@@ -402,6 +411,317 @@ TEST(RelativeTolerance, IsAFractionOfTheDiagonal)
   const ST::Snap_report r = ST::snap_vertices(points, triangles, ST::parameters::relative_tolerance(0.2 / diag));
   EXPECT_NEAR(r.tolerance, 0.2, 1e-12);
   EXPECT_EQ(r.border_edges_after, 0u);
+}
+
+// Issue 21: a dense cluster. `points` corners within 1e-6 of (1, 2, 3). With `shared` true, every
+// triangle has its three corners in the cluster (points / 3 triangles); otherwise each triangle
+// has one corner there and two far apart corners.
+void write_dense_cluster(const std::string& path, std::size_t points, bool shared, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> near(-5e-7, 5e-7), far(10, 1000);
+  const std::size_t triangles = shared ? points / 3 : points;
+  std::ofstream out(path);
+  out.precision(17);
+  out << "OFF\n" << 3 * triangles << ' ' << triangles << " 0\n";
+  for(std::size_t t = 0; t < triangles; ++t)
+    for(int k = 0; k < 3; ++k) {
+      if(shared || k == 0) out << 1 + near(rng) << ' ' << 2 + near(rng) << ' ' << 3 + near(rng) << '\n';
+      else out << far(rng) << ' ' << far(rng) << ' ' << far(rng) << '\n';
+    }
+  for(std::size_t t = 0; t < triangles; ++t) out << "3 " << 3 * t << ' ' << 3 * t + 1 << ' ' << 3 * t + 2 << '\n';
+}
+
+TEST(SnapVertices, Issue21DenseCluster)
+{
+  // Every pair of such a cluster is within the tolerance: the tolerance graph must not be listed
+  // (it took 57 s and 2 GB for 20,000 points, and 40,000 ran out of memory).
+  const std::string folder = soup_test::temporary_folder("dense_cluster");
+  const std::string in = folder + "/cluster.off", out = folder + "/repaired.off";
+  for(const auto& [points, shared] : {std::pair<std::size_t, bool>(20000, true), std::pair<std::size_t, bool>(6666, false),
+                                      std::pair<std::size_t, bool>(20000, false)}) {
+    SCOPED_TRACE(std::to_string(points) + (shared ? " points, triangles inside the cluster" : " points, far corners"));
+    write_dense_cluster(in, points, shared, 1);
+    const soup_test::Bounded_run r =
+      soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "repair", in, "-o", out, "--tolerance", "1e-3"}, 20, 2048);
+    EXPECT_TRUE(r.exited_normally()) << r.err;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_LT(r.cpu_seconds, 2.0);
+    EXPECT_LT(r.peak_rss_mb, 500u);
+  }
+  // 40,000 points: the whole repair within bounds, and the weld and the split within 2 s.
+  write_dense_cluster(in, 40000, true, 2);
+  const soup_test::Bounded_run r =
+    soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "repair", in, "-o", out, "--tolerance", "1e-3"}, 30, 2048);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(r.peak_rss_mb, 500u);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::IO::read_triangle_soup(in, points, triangles);
+  Tables tables(triangles, points.size());
+  const std::clock_t start = std::clock();
+  const ST::Snap_report snap = ST::snap_vertices(points, triangles, tables, CGAL::parameters::snapping_tolerance(1e-3));
+  ST::split_t_junctions(points, triangles, tables, CGAL::parameters::snapping_tolerance(1e-3));
+  const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
+  EXPECT_GT(snap.merged_vertices, 20000u);
+  EXPECT_LT(seconds, 2.0);
+}
+
+// The grid's components are those of the tolerance graph listed pair by pair: dense clusters
+// (one cell, several cells, two clusters just beyond the tolerance) among sparse points.
+TEST(SnapVertices, Issue21ToleranceGridComponentsAreExact)
+{
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double eps = 1e-2;
+  std::vector<Point> points;
+  auto blob = [&](double x, double y, double z, double radius, std::size_t n) {
+    for(std::size_t i = 0; i < n; ++i)
+      points.emplace_back(x + radius * (2 * unit(rng) - 1), y + radius * (2 * unit(rng) - 1), z + radius * (2 * unit(rng) - 1));
+  };
+  blob(0.5, 0.5, 0.5, 1e-6, 300);                  // one cell
+  blob(0.2, 0.2, 0.2, 0.4 * eps, 400);             // several cells
+  blob(0.8, 0.2, 0.2, 1e-7, 200);                  // two clusters 1.0001 eps apart
+  blob(0.8 + 1.0001 * eps, 0.2, 0.2, 1e-7, 200);
+  blob(0.2, 0.8, 0.8, 1e-7, 200);                  // two clusters 0.9999 eps apart
+  blob(0.2 + 0.9999 * eps, 0.8, 0.8, 1e-7, 200);
+  for(int i = 0; i < 3000; ++i) points.emplace_back(unit(rng), unit(rng), unit(rng));
+  ST::internal::Tolerance_grid<Epick> grid(points, Epick::FT(eps), Epick());
+  ASSERT_TRUE(grid.usable());
+  EXPECT_GT(grid.largest_cell(), ST::internal::dense_cell_size);
+  ST::internal::Union_find fast(points.size()), slow(points.size());
+  grid.unite_components(fast);
+  Epick::Compare_squared_distance_3 compare_sq;
+  for(std::uint32_t i = 0; i < points.size(); ++i)
+    for(std::uint32_t j = i + 1; j < points.size(); ++j)
+      if(compare_sq(points[i], points[j], eps * eps) != CGAL::LARGER) slow.unite(i, j);
+  std::size_t sets = 0;
+  for(std::uint32_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(fast.find(i), slow.find(i)) << "point " << i;
+    if(slow.find(i) == i) ++sets;
+  }
+  EXPECT_LT(sets, points.size() - 1000);
+}
+
+// Issue 21 (the ambiguous count of item 13): the report does not depend on the order of the
+// triangles, the rotation of their corners or the numbering of the vertices (the sites, listed by
+// vertex, follow the numbering). A dense cluster whose triangles all lie inside it, beside two
+// small ones, and ALSTOM_TEST4 at 1e-2 of its diagonal.
+struct Permuted_run
+{
+  ST::Snap_report snap;
+  ST::Split_report split;
+  std::multiset<std::array<std::array<double, 3>, 3>> geometry;
+  std::set<std::array<double, 3>> site_points;
+};
+
+Permuted_run run_permuted(const std::vector<Point>& points, const std::vector<Triangle>& triangles, double tol,
+                          unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::vector<std::size_t> relabel(points.size());
+  std::iota(relabel.begin(), relabel.end(), 0);
+  std::vector<Triangle> t = triangles;
+  if(seed != 0) {
+    std::shuffle(relabel.begin(), relabel.end(), rng);
+    std::shuffle(t.begin(), t.end(), rng);
+    for(Triangle& x : t) std::rotate(x.begin(), x.begin() + rng() % 3, x.end());
+  }
+  std::vector<Point> p(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) p[relabel[i]] = points[i];
+  for(Triangle& x : t) for(std::size_t& v : x) v = relabel[v];
+  Tables tables(t, p.size());
+  Permuted_run run;
+  run.snap = ST::snap_vertices(p, t, tables, CGAL::parameters::snapping_tolerance(tol));
+  run.split = ST::split_t_junctions(p, t, tables, CGAL::parameters::snapping_tolerance(tol));
+  run.geometry = geometric_triangles(p, t);
+  for(std::size_t v : run.snap.ambiguous_sites) run.site_points.insert({p[v].x(), p[v].y(), p[v].z()});
+  return run;
+}
+
+void expect_same_reports(const std::vector<Point>& points, const std::vector<Triangle>& triangles, double tol)
+{
+  const Permuted_run a = run_permuted(points, triangles, tol, 0);
+  for(unsigned seed = 1; seed <= 4; ++seed) {
+    SCOPED_TRACE("permutation " + std::to_string(seed));
+    const Permuted_run b = run_permuted(points, triangles, tol, seed);
+    EXPECT_EQ(a.snap.candidate_vertices, b.snap.candidate_vertices);
+    EXPECT_EQ(a.snap.merged_vertices, b.snap.merged_vertices);
+    EXPECT_EQ(a.snap.clusters, b.snap.clusters);
+    EXPECT_EQ(a.snap.refused_same_triangle, b.snap.refused_same_triangle);
+    EXPECT_EQ(a.snap.refused_degenerate, b.snap.refused_degenerate);
+    EXPECT_EQ(a.snap.refused_flip, b.snap.refused_flip);
+    EXPECT_EQ(a.snap.refused_holds_welds, b.snap.refused_holds_welds);
+    EXPECT_EQ(a.snap.ambiguous_sites.size(), b.snap.ambiguous_sites.size());
+    EXPECT_EQ(a.site_points, b.site_points);
+    EXPECT_EQ(a.snap.short_edges, b.snap.short_edges);
+    EXPECT_EQ(a.snap.border_edges_after, b.snap.border_edges_after);
+    EXPECT_EQ(a.snap.max_displacement, b.snap.max_displacement);
+    EXPECT_EQ(a.split.t_junctions, b.split.t_junctions);
+    EXPECT_EQ(a.split.split_triangles, b.split.split_triangles);
+    EXPECT_EQ(a.split.refused_overlap, b.split.refused_overlap);
+    EXPECT_EQ(a.split.refused_degenerate, b.split.refused_degenerate);
+    EXPECT_EQ(a.split.refused_flip, b.split.refused_flip);
+    EXPECT_EQ(a.split.ambiguous, b.split.ambiguous);
+    EXPECT_EQ(a.split.border_edges_after, b.split.border_edges_after);
+    EXPECT_EQ(a.geometry, b.geometry);
+  }
+}
+
+TEST(SnapVertices, Issue21ReportDoesNotDependOnOrderInADenseCluster)
+{
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> near(-5e-7, 5e-7);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t t = 0; t < 400; ++t) {
+    for(int k = 0; k < 3; ++k) points.emplace_back(1 + near(rng), 2 + near(rng), 3 + near(rng));
+    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  // Two triangles whose corners are pairwise within the tolerance: a short-edge site.
+  for(const double x : {5.0, 5.0005}) {
+    const std::size_t v = points.size();
+    points.emplace_back(x, 0, 0);
+    points.emplace_back(x + 0.0004, 0.0003, 0);
+    points.emplace_back(x, 0.0006, 0.0002);
+    triangles.push_back({v, v + 1, v + 2});
+  }
+  expect_same_reports(points, triangles, 1e-3);
+}
+
+TEST(SnapVertices, Issue21ReportDoesNotDependOnOrderOnAlstom)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  expect_same_reports(points, triangles, 1e-2 * diag);
+}
+
+// Issue 20: points read through property maps of every kind give the results of plain points.
+using Coordinate_triple = std::array<double, 3>;
+
+/// a readable map that constructs the point: `get` returns by value.
+struct By_value_point_map
+{
+  using key_type = Coordinate_triple;
+  using value_type = Point;
+  using reference = Point;
+  using category = boost::readable_property_map_tag;
+  friend Point get(const By_value_point_map&, const Coordinate_triple& c) { return Point(c[0], c[1], c[2]); }
+};
+
+/// the same, readable and writable.
+struct Read_write_point_map
+{
+  using key_type = Coordinate_triple;
+  using value_type = Point;
+  using reference = Point;
+  using category = boost::read_write_property_map_tag;
+  friend Point get(const Read_write_point_map&, const Coordinate_triple& c) { return Point(c[0], c[1], c[2]); }
+  friend void put(const Read_write_point_map&, Coordinate_triple& c, const Point& p) { c = {p.x(), p.y(), p.z()}; }
+};
+
+struct By_value_kind
+{
+  using Range = std::vector<Coordinate_triple>;
+  using Map = By_value_point_map;
+  static Range make(const std::vector<Point>& p)
+  {
+    Range r;
+    for(const Point& q : p) r.push_back({q.x(), q.y(), q.z()});
+    return r;
+  }
+  static Map map(const Range&) { return Map(); }
+};
+struct Read_write_kind : By_value_kind
+{
+  using Map = Read_write_point_map;
+  static Map map(const Range&) { return Map(); }
+};
+struct Reference_kind
+{
+  using Range = std::vector<std::pair<Point, int>>;
+  using Map = CGAL::First_of_pair_property_map<std::pair<Point, int>>;
+  static Range make(const std::vector<Point>& p)
+  {
+    Range r;
+    for(const Point& q : p) r.emplace_back(q, 0);
+    return r;
+  }
+  static Map map(const Range&) { return Map(); }
+};
+struct Point_set_kind
+{
+  using Range = CGAL::Point_set_3<Point>;
+  using Map = Range::Point_map;
+  static Range make(const std::vector<Point>& p)
+  {
+    Range r;
+    for(const Point& q : p) r.insert(q);
+    return r;
+  }
+  static Map map(const Range& r) { return r.point_map(); }
+};
+
+template <class Kind>
+class PointMaps : public ::testing::Test {};
+using Map_kinds = ::testing::Types<By_value_kind, Read_write_kind, Reference_kind, Point_set_kind>;
+TYPED_TEST_SUITE(PointMaps, Map_kinds);
+
+TYPED_TEST(PointMaps, Issue20ByValuePointMap)
+{
+  // ALSTOM_TEST4: welds and T-junctions at 1e-3 of its diagonal.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  const double tol = 1e-3 * diag;
+
+  std::vector<Triangle> plain_triangles = triangles;
+  Tables plain_tables(plain_triangles, points.size());
+  const ST::Snap_report plain_snap =
+    ST::snap_vertices(points, plain_triangles, plain_tables, CGAL::parameters::snapping_tolerance(tol));
+  const ST::Split_report plain_split =
+    ST::split_t_junctions(points, plain_triangles, plain_tables, CGAL::parameters::snapping_tolerance(tol));
+  ASSERT_GT(plain_snap.merged_vertices, 0u);
+  ASSERT_GT(plain_split.split_triangles, 0u);
+
+  const typename TypeParam::Range range = TypeParam::make(points);
+  const auto map = TypeParam::map(range);
+  std::vector<Triangle> mapped_triangles = triangles;
+  Tables mapped_tables(mapped_triangles, points.size());
+  const ST::Snap_report snap = ST::snap_vertices(range, mapped_triangles, mapped_tables,
+                                                 CGAL::parameters::snapping_tolerance(tol).point_map(map));
+  const ST::Split_report split = ST::split_t_junctions(range, mapped_triangles, mapped_tables,
+                                                       CGAL::parameters::snapping_tolerance(tol).point_map(map));
+  EXPECT_EQ(snap.merged_vertices, plain_snap.merged_vertices);
+  EXPECT_EQ(snap.clusters, plain_snap.clusters);
+  EXPECT_EQ(snap.ambiguous_sites, plain_snap.ambiguous_sites);
+  EXPECT_EQ(snap.short_edges, plain_snap.short_edges);
+  EXPECT_EQ(snap.refused(), plain_snap.refused());
+  EXPECT_EQ(split.t_junctions, plain_split.t_junctions);
+  EXPECT_EQ(split.split_triangles, plain_split.split_triangles);
+  EXPECT_EQ(split.ambiguous, plain_split.ambiguous);
+  EXPECT_EQ(mapped_triangles, plain_triangles);
+
+  // The octree over the mapped range answers as over the points.
+  const ST::Octree<Epick> plain_tree(points);
+  const ST::Octree<Epick, typename TypeParam::Map> tree(range, map);
+  for(std::size_t i = 0; i < points.size(); i += 7) {
+    std::vector<std::size_t> expected, found;
+    plain_tree.vertices_near_point(points[i], tol, std::back_inserter(expected));
+    tree.vertices_near_point(points[i], tol, std::back_inserter(found));
+    EXPECT_EQ(found, expected);
+    EXPECT_EQ(tree.nearest_vertex(points[i], tol), plain_tree.nearest_vertex(points[i], tol));
+    const Point& a = points[i];
+    const Point& b = points[(i + 1) % points.size()];
+    expected.clear();
+    found.clear();
+    plain_tree.vertices_near_segment(a, b, tol, std::back_inserter(expected));
+    tree.vertices_near_segment(a, b, tol, std::back_inserter(found));
+    EXPECT_EQ(found, expected);
+  }
 }
 
 } // namespace

@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/exact_signs.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/tolerance_graph.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
@@ -65,9 +66,12 @@ struct Snap_report
   std::size_t refused_degenerate = 0;         ///< refusals: a triangle would become degenerate
   std::size_t refused_flip = 0;               ///< refusals: a triangle would flip
   std::size_t refused_holds_welds = 0;        ///< refusals: the vertex holds earlier welds (see `Refusal_reason`)
-  /// ambiguous sites: groups of vertices connected by the tolerance graph that could not all be
-  /// merged into one representative (a chain longer than the tolerance, or vertices of one
-  /// triangle closer than the tolerance). Each site is listed by its smallest vertex index.
+  /// ambiguous sites: the connected components of the tolerance graph (all pairs of candidates
+  /// within the tolerance, vertices of one triangle included) that hold two vertices of one
+  /// triangle, or whose vertices did not all go to one representative (a chain longer than the
+  /// tolerance). Each site is listed by the index of its lexicographically smallest point, in
+  /// increasing order: the sites do not depend on the order of the triangles, and follow a
+  /// renumbering of the vertices.
   std::vector<std::size_t> ambiguous_sites;
   /// edges shorter than the tolerance (two vertices of one triangle closer than it): the minimum
   /// feature separation is not met there, and such pairs are never merged.
@@ -85,6 +89,10 @@ enum fixed_vertices_t { fixed_vertices };
 } // namespace internal_np
 
 namespace internal {
+
+/// a grid cell (of diagonal the tolerance) holding more candidates than this makes
+/// `snap_vertices()` build the tolerance graph's components on the grid (same result, no pair list).
+constexpr std::size_t dense_cell_size = 64;
 
 template <class Kernel, class Point>
 bool moves_keep_triangle(const Point& a, const Point& b, const Point& c,
@@ -155,20 +163,34 @@ CGAL::Comparison_result compare_distances(const Point& p, const Point& q, const 
 ///
 /// **Decisions** (all by the kernel's predicates, exact with Epick and Epeck):
 /// 1. the tolerance graph links two candidates within the tolerance of each other
-///    (`Compare_squared_distance_3`), except two vertices of one triangle, which are never merged
-///    (the pair is refused and reported as an ambiguous site);
-/// 2. each connected component of that graph is cut into clusters by a canonical rule: its
-///    lexicographically smallest point (`Less_xyz_3`) is a representative; the candidates within
-///    the tolerance of it join it, nearest first (ties by `Less_xyz_3`), unless one shares a
-///    triangle with a vertex already in the cluster; the rest of the component is cut the same
-///    way. So no point moves farther than the tolerance, merges never chain, and a component
-///    that needs more than one cluster is reported as ambiguous (the minimum feature separation
-///    of Hoffmann, Hopcroft and Karasick is not met there);
+///    (`Compare_squared_distance_3`); two vertices of one triangle are never merged (the pair is
+///    refused);
+/// 2. the candidates are cut into clusters by a canonical rule: the lexicographically smallest
+///    candidate (`Less_xyz_3`, ties by index) is a representative; the candidates within the
+///    tolerance of it that share no triangle with it join it, nearest first (ties by
+///    `Less_xyz_3`), unless one shares a triangle with a vertex already in the cluster; the
+///    smallest candidate left is the next representative, and so on. So no point moves farther
+///    than the tolerance and merges never chain. A connected component of the tolerance graph
+///    that holds two vertices of one triangle, or that needs more than one cluster, is an
+///    ambiguous site (the minimum feature separation of Hoffmann, Hopcroft and Karasick is not
+///    met there), listed by its lexicographically smallest point;
 /// 3. a merge that would make a triangle degenerate or reverse its normal is refused (and the
 ///    other moves of that triangle with it), until every triangle is kept.
 /// The representative keeps its coordinates: no point is constructed. The decisions depend on
 /// the points only, not on the order of the triangles, the rotation of their corners or the
 /// numbering of the vertices (for points that are pairwise distinct, which the exact weld ensures).
+///
+/// **Dense clusters.** The tolerance graph is never listed pair by pair where candidates crowd:
+/// when a cell of a grid whose cells have a diagonal just below the tolerance holds more than 64
+/// candidates, the components are found on the grid (the points of a cell are each linked to the
+/// cell's first point, and two cells are joined by the first pair found within the tolerance,
+/// one exact nearest-point query per point of the smaller cell), and the neighbours of each
+/// representative are asked of an octree when it is chosen. Every link is still decided by
+/// `Compare_squared_distance_3`, so the clusters and the sites are exactly those defined above;
+/// only the cost changes: n candidates within the tolerance of each other cost O(n log n) plus
+/// O(n) per representative among them, not the n^2 / 2 pairs. The grid is not used when the
+/// tolerance is below about 1e-10 of the coordinates (or 1e-12 of the extent of the candidates),
+/// where a cell index would be lost in rounding.
 ///
 /// **Result.** Every reference to a merged vertex is replaced by its representative, in
 /// `triangles` and in `tables` (`Adjacency_tables::replace_vertex()`). Merged vertices stay in
@@ -222,7 +244,11 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     CGAL::parameters::get_parameter(np, internal_np::fixed_vertices), static_cast<const std::vector<char>*>(nullptr));
   if(fixed != nullptr && fixed->size() != points.size()) fixed = nullptr;
 
-  auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
+  // The points, read once: a readable map may return them by value.
+  std::vector<Point> point_copy;
+  point_copy.reserve(points.size());
+  for(const auto& e : points) point_copy.push_back(get(pm, e));
+  auto point = [&](std::size_t v) -> const Point& { return point_copy[v]; };
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
   typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();
   typename Kernel::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
@@ -266,143 +292,160 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   report.candidate_vertices = candidates.size();
   if(candidates.size() < 2) { report.border_edges_after = report.border_edges_before; return report; }
 
-  auto share_triangle = [&](size_type u, size_type v) {
-    const auto ru = tables.triangles_around_vertex(u), rv = tables.triangles_around_vertex(v);
-    // both lists are sorted: a merge-like scan
-    const size_type *a = ru.begin(), *b = rv.begin();
-    while(a != ru.end() && b != rv.end()) {
-      if(*a == *b) return true;
-      if(*a < *b) ++a; else ++b;
-    }
-    return false;
-  };
-
-  // 2. The tolerance graph over the candidates (local ids), as compressed rows.
+  // 2. The tolerance graph over the candidates (local ids). Pairs of one triangle within the
+  // tolerance are never merged: they are found from the triangles, and refused.
+  const std::size_t n = candidates.size();
   std::vector<Point> candidate_points;
-  candidate_points.reserve(candidates.size());
+  candidate_points.reserve(n);
   for(size_type v : candidates) candidate_points.push_back(point(v));
   const Octree<Kernel> tree(candidate_points, CGAL::Identity_property_map<Point>(), kernel);
-  std::vector<std::uint32_t> row;
-  std::vector<std::uint32_t> parent(candidates.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
+  const std::uint32_t not_candidate = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> local(points.size(), not_candidate);
+  for(std::size_t c = 0; c < n; ++c) local[candidates[c]] = static_cast<std::uint32_t>(c);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> same_triangle_pairs;
-  // One self-join over the octree (points visited in Morton order); the rows are filled in that
-  // order, then indexed by candidate.
-  std::vector<std::size_t> row_start(candidates.size()), row_end(candidates.size());
-  tree.for_each_neighbourhood(eps, [&](std::size_t c, const std::vector<std::size_t>& found) {
-    row_start[c] = row.size();
-    for(std::size_t d : found) {
-      if(d == c) continue;
-      if(share_triangle(candidates[c], candidates[d])) {
-        if(c < d) same_triangle_pairs.emplace_back(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
-        continue;
-      }
-      row.push_back(static_cast<std::uint32_t>(d));
-      const std::uint32_t a = find(static_cast<std::uint32_t>(c)), b = find(static_cast<std::uint32_t>(d));
-      if(a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-    row_end[c] = row.size();
-  });
-  auto neighbours = [&](std::uint32_t c) {
-    return std::make_pair(row.begin() + static_cast<std::ptrdiff_t>(row_start[c]),
-                          row.begin() + static_cast<std::ptrdiff_t>(row_end[c]));
-  };
-
-  // Components as compressed rows: the candidates of component k are
-  // component_members[component_begin[k] .. component_begin[k+1]), in increasing order.
-  std::vector<std::uint32_t> component_begin, component_members(candidates.size());
   {
-    std::vector<std::uint32_t> id_of_root(candidates.size(), static_cast<std::uint32_t>(-1));
-    std::vector<std::uint32_t> component_of(candidates.size());
-    std::uint32_t count = 0;
-    for(std::uint32_t c = 0; c < candidates.size(); ++c) {
-      const std::uint32_t r = find(c);
-      if(id_of_root[r] == static_cast<std::uint32_t>(-1)) id_of_root[r] = count++;
-      component_of[c] = id_of_root[r];
-    }
-    component_begin.assign(count + 1, 0);
-    for(std::uint32_t c = 0; c < candidates.size(); ++c) ++component_begin[component_of[c] + 1];
-    for(std::uint32_t k = 0; k < count; ++k) component_begin[k + 1] += component_begin[k];
-    std::vector<std::uint32_t> fill(component_begin.begin(), component_begin.end() - 1);
-    for(std::uint32_t c = 0; c < candidates.size(); ++c) component_members[fill[component_of[c]]++] = c;
+    typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
+    const FT eps2 = eps * eps;
+    for(size_type t = 0; t < tables.number_of_triangles(); ++t)
+      for(int i = 0; i < 3; ++i) {
+        const std::uint32_t a = local[tables.vertex(t, i)], b = local[tables.vertex(t, (i + 1) % 3)];
+        if(a == not_candidate || b == not_candidate) continue;
+        if(compare_sq(candidate_points[a], candidate_points[b], eps2) != CGAL::LARGER)
+          same_triangle_pairs.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    // In the order of the octree's self-join (Morton order of the first vertex), once each.
+    std::sort(same_triangle_pairs.begin(), same_triangle_pairs.end(), [&](const auto& x, const auto& y) {
+      const std::uint64_t cx = tree.morton_code(x.first), cy = tree.morton_code(y.first);
+      return cx < cy || (cx == cy && x < y);
+    });
+    same_triangle_pairs.erase(std::unique(same_triangle_pairs.begin(), same_triangle_pairs.end()),
+                              same_triangle_pairs.end());
   }
-  const std::size_t number_of_components = component_begin.size() - 1;
-  auto component = [&](std::size_t k) {
-    return std::make_pair(component_members.begin() + component_begin[k], component_members.begin() + component_begin[k + 1]);
-  };
-  std::vector<bool> ambiguous_component(number_of_components, false);
+
+  // The connected components of the tolerance graph (same-triangle pairs included): the sites
+  // reported as ambiguous are components. With a dense cluster (many candidates in a cell of the
+  // grid whose diagonal is the tolerance), a grid joins whole cells without listing their pairs,
+  // and the neighbours of a representative are asked of the octree when it is chosen. Otherwise
+  // one self-join over the octree gives every neighbourhood at once. Both decide every pair by
+  // the same exact predicate: the components and the clusters are the same.
+  internal::Union_find components(n);
+  internal::Tolerance_grid<Kernel> grid(candidate_points, eps, kernel);
+  const bool dense = grid.usable() && grid.largest_cell() > internal::dense_cell_size;
+  std::vector<std::uint32_t> row;
+  std::vector<std::size_t> row_start, row_end;
+  if(dense) {
+    grid.unite_components(components);
+  } else {
+    // Rows filled in Morton order, then indexed by candidate; same-triangle pairs are left out.
+    row_start.resize(n);
+    row_end.resize(n);
+    std::vector<char> mate(points.size(), 0);
+    tree.for_each_neighbourhood(eps, [&](std::size_t c, const std::vector<std::size_t>& found) {
+      for(size_type t : tables.triangles_around_vertex(candidates[c]))
+        for(size_type v : tables.triangle(t)) mate[v] = 1;
+      row_start[c] = row.size();
+      for(std::size_t d : found) {
+        if(d == c) continue;
+        components.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
+        if(!mate[candidates[d]]) row.push_back(static_cast<std::uint32_t>(d));
+      }
+      row_end[c] = row.size();
+      for(size_type t : tables.triangles_around_vertex(candidates[c]))
+        for(size_type v : tables.triangle(t)) mate[v] = 0;
+    });
+  }
+
   for(const auto& pr : same_triangle_pairs) {
     ++report.refused_same_triangle;
     visitor.on_refusal(candidates[pr.second], candidates[pr.first], Refusal_reason::SAME_TRIANGLE);
-    report.ambiguous_sites.push_back(std::min(candidates[pr.first], candidates[pr.second]));
   }
 
-  // 3. Clusters: canonical representatives, no chaining, no two vertices of one triangle.
+  // 3. Clusters: canonical representatives, no chaining, no two vertices of one triangle. The
+  // candidates are visited in lexicographic order (ties: index); an unassigned one is the
+  // smallest unassigned candidate of its component, and becomes a representative.
+  std::vector<std::uint32_t> lex_order(n);
+  std::iota(lex_order.begin(), lex_order.end(), 0u);
+  std::stable_sort(lex_order.begin(), lex_order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return less_xyz(candidate_points[a], candidate_points[b]);
+  });
   const size_type none = static_cast<size_type>(-1);
   std::vector<size_type> target(points.size(), none);      // representative of a merged vertex
   std::vector<std::uint32_t> in_cluster_mark(tables.number_of_triangles(), static_cast<std::uint32_t>(-1));
-  std::vector<bool> assigned(candidates.size(), false);
-  std::vector<std::uint32_t> remaining, members;
+  std::vector<std::uint32_t> mate_of(points.size(), not_candidate); // marks the vertices sharing a triangle with the representative
+  std::vector<bool> assigned(n, false);
+  std::vector<std::uint32_t> members;
+  std::vector<std::size_t> found;
+  std::vector<std::uint32_t> component_size(n, 0), largest_cluster(n, 0);
+  for(std::uint32_t c = 0; c < n; ++c) ++component_size[components.find(c)];
   std::uint32_t cluster_id = 0;
-  for(std::size_t k = 0; k < number_of_components; ++k) {
-    const auto comp = component(k);
-    if(comp.second - comp.first < 2) continue;
-    remaining.assign(comp.first, comp.second);
-    std::size_t rounds = 0;
-    while(remaining.size() > 1) {
-      ++rounds;
-      const std::uint32_t rep = *std::min_element(remaining.begin(), remaining.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return less_xyz(candidate_points[a], candidate_points[b]);
-      });
-      members.clear();
-      const auto nb = neighbours(rep);
-      for(auto it = nb.first; it != nb.second; ++it) if(!assigned[*it]) members.push_back(*it);
-      std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
-        const CGAL::Comparison_result r = internal::compare_distances(candidate_points[rep], candidate_points[a],
-                                                                      candidate_points[b], compare_distance);
-        if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_xyz(candidate_points[a], candidate_points[b]);
-      });
-      members.erase(std::unique(members.begin(), members.end()), members.end());
-      const size_type rep_v = candidates[rep];
-      assigned[rep] = true;
-      ++cluster_id;
-      for(size_type t : tables.triangles_around_vertex(rep_v)) in_cluster_mark[t] = cluster_id;
-      for(std::uint32_t m : members) {
-        const size_type mv = candidates[m];
-        if(fixed != nullptr && (*fixed)[mv]) {
-          // mv received welds in an earlier call: it may be a representative, never move.
-          ++report.refused_holds_welds;
-          visitor.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
-          ambiguous_component[k] = true;
-          continue;
-        }
-        bool conflict = false;
-        for(size_type t : tables.triangles_around_vertex(mv)) if(in_cluster_mark[t] == cluster_id) { conflict = true; break; }
-        if(conflict) {
-          ++report.refused_same_triangle;
-          visitor.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
-          ambiguous_component[k] = true;
-          continue;
-        }
-        for(size_type t : tables.triangles_around_vertex(mv)) in_cluster_mark[t] = cluster_id;
-        assigned[m] = true;
-        target[mv] = rep_v;
+  for(const std::uint32_t rep : lex_order) {
+    if(assigned[rep]) continue;
+    assigned[rep] = true;
+    const std::uint32_t root = components.find(rep);
+    if(component_size[root] < 2) continue;
+    const size_type rep_v = candidates[rep];
+    members.clear();
+    if(dense) {
+      for(size_type t : tables.triangles_around_vertex(rep_v))
+        for(size_type v : tables.triangle(t)) mate_of[v] = rep;
+      found.clear();
+      tree.vertices_near_point(candidate_points[rep], eps, std::back_inserter(found));
+      for(std::size_t d : found)
+        if(d != rep && !assigned[d] && mate_of[candidates[d]] != rep) members.push_back(static_cast<std::uint32_t>(d));
+    } else {
+      for(std::size_t k = row_start[rep]; k < row_end[rep]; ++k)
+        if(!assigned[row[k]]) members.push_back(row[k]);
+    }
+    std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const CGAL::Comparison_result r = internal::compare_distances(candidate_points[rep], candidate_points[a],
+                                                                    candidate_points[b], compare_distance);
+      if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+      return less_xyz(candidate_points[a], candidate_points[b]);
+    });
+    members.erase(std::unique(members.begin(), members.end()), members.end());
+    ++cluster_id;
+    for(size_type t : tables.triangles_around_vertex(rep_v)) in_cluster_mark[t] = cluster_id;
+    std::uint32_t cluster_size = 1;
+    for(std::uint32_t m : members) {
+      const size_type mv = candidates[m];
+      if(fixed != nullptr && (*fixed)[mv]) {
+        // mv received welds in an earlier call: it may be a representative, never move.
+        ++report.refused_holds_welds;
+        visitor.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
+        continue;
       }
-      remaining.erase(std::remove_if(remaining.begin(), remaining.end(), [&](std::uint32_t c) { return assigned[c]; }),
-                      remaining.end());
+      bool conflict = false;
+      for(size_type t : tables.triangles_around_vertex(mv)) if(in_cluster_mark[t] == cluster_id) { conflict = true; break; }
+      if(conflict) {
+        ++report.refused_same_triangle;
+        visitor.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
+        continue;
+      }
+      for(size_type t : tables.triangles_around_vertex(mv)) in_cluster_mark[t] = cluster_id;
+      assigned[m] = true;
+      target[mv] = rep_v;
+      ++cluster_size;
     }
-    if(rounds > 1 || !remaining.empty()) ambiguous_component[k] = true;
+    largest_cluster[root] = std::max(largest_cluster[root], cluster_size);
   }
-  for(std::size_t k = 0; k < number_of_components; ++k)
-    if(ambiguous_component[k]) {
-      const std::size_t smallest = candidates[*component(k).first]; // members are in increasing order
-      report.ambiguous_sites.push_back(smallest);
+
+  // Ambiguous sites: the components that hold two vertices of one triangle, or that did not all
+  // go to one representative. Each is listed by its lexicographically smallest point, so that
+  // the sites do not depend on the numbering of the vertices.
+  {
+    std::vector<char> ambiguous(n, 0);
+    for(const auto& pr : same_triangle_pairs) ambiguous[components.find(pr.first)] = 1;
+    for(std::uint32_t c = 0; c < n; ++c)
+      if(components.find(c) == c && component_size[c] >= 2 && largest_cluster[c] != component_size[c]) ambiguous[c] = 1;
+    for(const std::uint32_t c : lex_order) {
+      const std::uint32_t root = components.find(c);
+      if(ambiguous[root]) {
+        report.ambiguous_sites.push_back(candidates[c]);
+        ambiguous[root] = 0;
+      }
     }
-  std::sort(report.ambiguous_sites.begin(), report.ambiguous_sites.end());
-  report.ambiguous_sites.erase(std::unique(report.ambiguous_sites.begin(), report.ambiguous_sites.end()),
-                               report.ambiguous_sites.end());
+    std::sort(report.ambiguous_sites.begin(), report.ambiguous_sites.end());
+  }
 
   // 4. Geometric validity: no triangle may become degenerate or flip; refuse until stable.
   auto final_vertex = [&](size_type v) { return target[v] == none ? v : target[v]; };

@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/exact_signs.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/tolerance_graph.h>
 
 #include <CGAL/Cartesian_converter.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -26,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -72,6 +74,59 @@ CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Po
   return CGAL::compare(d1, d2);
 }
 
+/// `true` if the squared distance of `p` and `q`, computed in double, is clearly below `bound2`
+/// (a squared distance in double, far above underflow): the exact comparison then says so too.
+/// For double coordinates only (otherwise `false`: ask the exact predicate).
+template <class Point>
+bool surely_within(const Point& p, const Point& q, double bound2)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+    return bound2 > 1e-250 && dx * dx + dy * dy + dz * dz < bound2 * (1 - 1e-12);
+  } else {
+    (void)p; (void)q; (void)bound2;
+    return false;
+  }
+}
+
+/// The kernel, with a `Compare_squared_distance_3` that first accepts, in double, a point clearly
+/// within the bound of a segment's end point (or of the other point), then asks the kernel. The
+/// answers are the kernel's; the shortcut spares the exact fallback that the filtered
+/// point-segment predicate takes for a point equal to the segment's target, as every border
+/// vertex is for the border edges that end at it.
+template <class Kernel>
+struct Kernel_with_near_end_shortcut : public Kernel
+{
+  using Point_3 = typename Kernel::Point_3;
+  using Segment_3 = typename Kernel::Segment_3;
+  using FT = typename Kernel::FT;
+
+  struct Compare_squared_distance_3
+  {
+    typename Kernel::Compare_squared_distance_3 base;
+    using result_type = CGAL::Comparison_result;
+    CGAL::Comparison_result operator()(const Point_3& p, const Point_3& q, const FT& bound2) const
+    {
+      if(surely_within(p, q, CGAL::to_double(bound2))) return CGAL::SMALLER;
+      return base(p, q, bound2);
+    }
+    CGAL::Comparison_result operator()(const Point_3& p, const Segment_3& s, const FT& bound2) const
+    {
+      const double b = CGAL::to_double(bound2);
+      if(surely_within(p, s.source(), b) || surely_within(p, s.target(), b)) return CGAL::SMALLER;
+      return base(p, s, bound2);
+    }
+  };
+
+  Kernel_with_near_end_shortcut() = default;
+  explicit Kernel_with_near_end_shortcut(const Kernel& kernel) : Kernel(kernel) {}
+  Compare_squared_distance_3 compare_squared_distance_3_object() const
+  {
+    return Compare_squared_distance_3{Kernel::compare_squared_distance_3_object()};
+  }
+};
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyTJunctions
@@ -96,6 +151,14 @@ CGAL::Comparison_result compare_point_segment_distances(const Point& p, const Po
 /// table (17) (`Adjacency_tables::split_triangle()`). A vertex whose split would create a
 /// degenerate triangle or reverse a normal (exact predicates) is refused.
 /// No point is constructed: splits reuse existing vertices.
+///
+/// **Dense clusters.** Where a cell of a grid whose cells have a diagonal just below the tolerance
+/// holds more than 64 border vertices, a border edge shorter than twice the tolerance does not
+/// list the cells that lie entirely within the tolerance of one of its end points: their
+/// vertices are welds of that end point, not T-junctions, except those that share a triangle with
+/// it, which are taken from the triangles. The vertices examined, and so every decision, are the
+/// same; a cluster of n border vertices within the tolerance of each other is not listed once per
+/// edge (n^2 work). The fan check along an edge is linear in the number of vertices on it.
 ///
 /// New triangles are appended to `triangles` (which must support `push_back`), in the order of
 /// the border edges, then along each edge.
@@ -124,7 +187,11 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   const FT eps2 = eps * eps;
 
-  auto point = [&](std::size_t v) -> const Point& { return get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v))); };
+  // The points, read once: a readable map may return them by value.
+  std::vector<Point> point_copy;
+  point_copy.reserve(points.size());
+  for(const auto& e : points) point_copy.push_back(get(pm, e));
+  auto point = [&](std::size_t v) -> const Point& { return point_copy[v]; };
   typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
   typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
@@ -150,14 +217,37 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   std::vector<Point> border_points;
   border_points.reserve(border_vertices.size());
   for(size_type v : border_vertices) border_points.push_back(point(v));
-  const Octree<Kernel> tree(border_points, CGAL::Identity_property_map<Point>(), kernel);
+  using Tree_traits = internal::Kernel_with_near_end_shortcut<Kernel>;
+  const Octree<Tree_traits> tree(border_points, CGAL::Identity_property_map<Point>(), Tree_traits(kernel));
+  // With a dense cluster of border vertices, a short edge inside it would list the whole cluster,
+  // whose vertices are all within the tolerance of an end point (welds, not T-junctions): the
+  // grid skips the cells that lie within the tolerance of an end point, and the vertices that
+  // share a triangle with an end point (which may still be T-junctions) are added from the
+  // triangles. The vertices examined below are the same; the cluster is not listed per edge.
+  internal::Tolerance_grid<Kernel> grid(border_points, eps, kernel);
+  const bool dense = grid.usable() && grid.largest_cell() > internal::dense_cell_size;
+  const std::uint32_t not_border = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> border_index;
+  if(dense) {
+    border_index.assign(points.size(), not_border);
+    for(std::size_t f = 0; f < border_vertices.size(); ++f) border_index[border_vertices[f]] = static_cast<std::uint32_t>(f);
+  }
 
+  // A vertex clearly within the tolerance of an end point (in double, for double coordinates) is
+  // within it of the segment: the exact predicate is asked only when that does not decide (it
+  // is slow on the tiny segments of a dense cluster).
+  const double eps2d = CGAL::to_double(eps2);
   auto near_segment = [&](size_type v, size_type a, size_type b) {
+    if(internal::surely_within(point(v), point(a), eps2d) || internal::surely_within(point(v), point(b), eps2d)) return true;
     return compare_sq(point(v), segment(point(a), point(b)), eps2) != CGAL::LARGER;
   };
-  auto near_vertex = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), eps2) != CGAL::LARGER; };
+  auto near_vertex = [&](size_type v, size_type a) {
+    return internal::surely_within(point(v), point(a), eps2d) || compare_sq(point(v), point(a), eps2) != CGAL::LARGER;
+  };
   const FT four_eps2 = 4 * eps2;
-  auto near_vertex2 = [&](size_type v, size_type a) { return compare_sq(point(v), point(a), four_eps2) != CGAL::LARGER; };
+  auto near_vertex2 = [&](size_type v, size_type a) {
+    return internal::surely_within(point(v), point(a), 4 * eps2d) || compare_sq(point(v), point(a), four_eps2) != CGAL::LARGER;
+  };
   auto share_triangle = [&](size_type u, size_type v) {
     for(size_type t : tables.triangles_around_vertex(u)) if(tables.local_index(t, v) >= 0) return true;
     return false;
@@ -173,7 +263,24 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     const size_type apex = tables.vertex(e.triangle, (e.index + 2) % 3);
     pending[k] = internal::Pending_edge{a, b, {}};
     found.clear();
-    tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found));
+    if(dense && grid.is_short(point(a), point(b))) {
+      grid.for_each_point_near_box(point(a), point(b), [&](std::uint32_t f) {
+        if(near_segment(border_vertices[f], a, b)) found.push_back(f);
+      });
+      for(size_type end : {a, b})
+        for(size_type t : tables.triangles_around_vertex(end))
+          for(size_type w : tables.triangle(t))
+            if(border_index[w] != not_border && near_segment(w, a, b)) found.push_back(border_index[w]);
+      std::sort(found.begin(), found.end());
+      found.erase(std::unique(found.begin(), found.end()), found.end());
+    } else {
+      // The same answer by either strategy; the index-space box of a long segment is most of the
+      // workspace, so long segments cull the boxes along the segment instead.
+      const double length2 = CGAL::to_double(kernel.compute_squared_distance_3_object()(point(a), point(b)));
+      const Segment_query_strategy strategy = length2 > 64 * eps2d ? Segment_query_strategy::NEIGHBORHOOD_CULLING
+                                                                   : tree.segment_query_strategy();
+      tree.vertices_near_segment(point(a), point(b), eps, std::back_inserter(found), strategy);
+    }
     for(std::size_t f : found) {
       const size_type c = border_vertices[f];
       if(c == a || c == b || c == apex) continue;
@@ -265,27 +372,48 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     if(t == Adjacency_tables::border_edge) continue;
     const size_type apex = tables.vertex(t, (i + 2) % 3);
     // Refuse the vertices whose fan triangle (previous, c, apex) or (c, next, apex) would be
-    // degenerate or flipped relative to (a, b, apex); repeat until the whole fan is valid.
-    for(bool changed_fan = true; changed_fan && !pe.on_edge.empty();) {
-      changed_fan = false;
+    // degenerate or flipped relative to (a, b, apex): the first failing fan triangle along the
+    // edge loses its on-edge vertex (the one nearer b when both are), until the whole fan is
+    // valid. The fan before a failure is unchanged by the drop, so the scan resumes there: one
+    // pass over a doubly linked chain, linear in the number of vertices on the edge.
+    if(!pe.on_edge.empty()) {
+      const std::size_t m = pe.on_edge.size();
       std::vector<size_type> chain;
+      chain.reserve(m + 2);
       chain.push_back(pe.a);
       chain.insert(chain.end(), pe.on_edge.begin(), pe.on_edge.end());
       chain.push_back(pe.b);
-      for(std::size_t k = 0; k + 1 < chain.size(); ++k) {
-        const Point& p = point(chain[k]);
-        const Point& q = point(chain[k + 1]);
+      const std::size_t last = m + 1;
+      std::vector<std::size_t> next(m + 2), previous(m + 2);
+      for(std::size_t j = 0; j <= last; ++j) { next[j] = j + 1; previous[j] = j == 0 ? 0 : j - 1; }
+      std::vector<char> dropped(m + 2, 0);
+      std::size_t left = 0;
+      while(left != last && next[0] != last) {
+        const std::size_t right = next[left];
+        const Point& p = point(chain[left]);
+        const Point& q = point(chain[right]);
         const bool degenerate = collinear(p, q, point(apex));
         const bool flipped = !degenerate &&
           internal::sign_of_normal_dot(point(pe.a), point(pe.b), point(apex), p, q, point(apex)) != CGAL::POSITIVE;
-        if(!degenerate && !flipped) continue;
-        // Drop the on-edge vertex of this fan triangle (the one nearer b when both are).
-        const std::size_t drop = (k + 1 < chain.size() - 1) ? k + 1 : k;
+        if(!degenerate && !flipped) { left = right; continue; }
         if(degenerate) ++report.refused_degenerate; else ++report.refused_flip;
-        pe.on_edge.erase(pe.on_edge.begin() + static_cast<std::ptrdiff_t>(drop - 1));
-        changed_fan = true;
-        break;
+        if(right != last) {
+          dropped[right] = 1;
+          next[left] = next[right];
+          previous[next[right]] = left;
+        } else {
+          // left is an on-edge vertex: the loop stops when none is left.
+          dropped[left] = 1;
+          const std::size_t before = previous[left];
+          next[before] = last;
+          previous[last] = before;
+          left = before;
+        }
       }
+      std::size_t kept = 0;
+      for(std::size_t j = 1; j <= m; ++j)
+        if(!dropped[j]) pe.on_edge[kept++] = chain[j];
+      pe.on_edge.resize(kept);
     }
     if(pe.on_edge.empty()) continue;
     report.t_junctions += pe.on_edge.size();
