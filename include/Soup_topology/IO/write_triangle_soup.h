@@ -185,7 +185,7 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
     if(!used[i]) continue;
     const std::array<double, 3> c = internal::write_coordinates(points[i]);
     std::array<double, 3> r;
-    for(int k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k) {
       // Converting a double outside the float range is undefined behaviour: test first.
       if(!std::isfinite(c[k]) || std::abs(c[k]) > float_max)
         throw Write_error("point " + std::to_string(i) + " " + describe(c) + " becomes infinite in float" + advice);

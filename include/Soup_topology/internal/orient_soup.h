@@ -153,7 +153,7 @@ private:
                                         by_index);
         };
         std::size_t up = 0;
-        for(std::size_t k = g; k < e; ++k) up += increasing(keys[k].second) ? 1 : 0;
+        for(std::size_t k = g; k < e; ++k) up += increasing(keys[k].second) ? 1u : 0u;
         bool keep_increasing = 2 * up > e - g;
         if(2 * up == e - g) {
           const std::vector<size_type>& rank = point_ranks();
@@ -406,7 +406,7 @@ private:
         const std::array<double, 3>& b = xyz(tables_.vertex(t, 1));
         const std::array<double, 3>& d = xyz(tables_.vertex(t, 2));
         for(const std::array<double, 3>* x : {&a, &b, &d})
-          for(int i = 0; i < 3; ++i) {
+          for(std::size_t i = 0; i < 3; ++i) {
             box[c][i] = std::min(box[c][i], (*x)[i]);
             box[c][i + 3] = std::max(box[c][i + 3], (*x)[i]);
           }
@@ -428,7 +428,7 @@ private:
       boxes.emplace_back(CGAL::Bbox_3(box[c][0], box[c][1], box[c][2], box[c][3], box[c][4], box[c][5]), c);
     std::vector<std::size_t> depth(m, 0);
     auto encloses = [&](std::size_t outer, std::size_t inner) {
-      for(int i = 0; i < 3; ++i)
+      for(std::size_t i = 0; i < 3; ++i)
         if(box[inner][i] < box[outer][i] || box[outer][i + 3] < box[inner][i + 3]) return false;
       return std::abs(winding_number(closed_patches[outer], sample[inner])) > 0.5;
     };
@@ -445,7 +445,7 @@ private:
   {
     std::size_t reversals = 0;
     const std::size_t size = patch_begin_[p + 1] - patch_begin_[p];
-    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) reversals += reversed_[patch_order_[k]] ? 1 : 0;
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) reversals += reversed_[patch_order_[k]] ? 1u : 0u;
     if(2 * reversals != size) return 2 * reversals > size;
     std::vector<size_type> members(patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]),
                                    patch_order_.begin() + std::ptrdiff_t(patch_begin_[p + 1]));

@@ -66,8 +66,8 @@ Polygon_projection project_polygon(std::size_t k, const Corner_coordinates& xyz,
   for(std::size_t i = 0; i < k; ++i)
   {
     const auto p = xyz(i);
-    uv[2 * i] = p[u];
-    uv[2 * i + 1] = p[v];
+    uv[2 * i] = p[static_cast<std::size_t>(u)];
+    uv[2 * i + 1] = p[static_cast<std::size_t>(v)];
   }
   return r;
 }
