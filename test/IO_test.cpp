@@ -943,7 +943,7 @@ TEST_F(HostileInput, Issue21PolygonRepeatingAVertexIsSkippedInLinearTime)
   // 1M indices: the tool took minutes with the fan of this face.
   const soup_test::Bounded_run run = soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "stats", path}, 2, 500);
   EXPECT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_LT(run.wall_seconds, 2.0);
+  if(!soup_test::sanitized_build) { EXPECT_LT(run.cpu_seconds, 2.0); }
 }
 
 

@@ -446,7 +446,9 @@ TEST(SnapVertices, Issue21DenseCluster)
       soup_test::run_bounded({SOUP_TOPOLOGY_CLI, "repair", in, "-o", out, "--tolerance", "1e-3"}, 20, 2048);
     EXPECT_TRUE(r.exited_normally()) << r.err;
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_LT(r.cpu_seconds, 2.0);
+    // The sanitizers slow everything several times: there the bound of the child process
+    // (ten times the time) is the check.
+    if(!soup_test::sanitized_build) { EXPECT_LT(r.cpu_seconds, 2.0); }
     EXPECT_LT(r.peak_rss_mb, 500u);
   }
   // 40,000 points: the whole repair within bounds, and the weld and the split within 2 s.
@@ -464,7 +466,7 @@ TEST(SnapVertices, Issue21DenseCluster)
   ST::split_t_junctions(points, triangles, tables, CGAL::parameters::snapping_tolerance(1e-3));
   const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
   EXPECT_GT(snap.merged_vertices, 20000u);
-  EXPECT_LT(seconds, 2.0);
+  if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 2.0); }
 }
 
 // The grid's components are those of the tolerance graph listed pair by pair: dense clusters
