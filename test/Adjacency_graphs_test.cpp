@@ -99,7 +99,7 @@ struct Union_find
 };
 
 // Triangle -> triangles sharing an edge with it (with multiplicity: one entry per shared edge).
-std::vector<std::vector<std::size_t>> reference_triangle_neighbours(const std::vector<Face>& triangles)
+std::vector<std::vector<std::size_t>> reference_triangle_neighbors(const std::vector<Face>& triangles)
 {
   std::vector<std::vector<std::size_t>> nb(triangles.size());
   for(const auto& entry : edge_map(triangles))
@@ -265,7 +265,7 @@ std::size_t check_triangle_view(const Soup& s)
   EXPECT_EQ(listed, reference_edges);
 
   // Incidence: out-edges, in-edges and adjacent vertices list the reference neighbours.
-  const auto reference = reference_triangle_neighbours(s.triangles);
+  const auto reference = reference_triangle_neighbors(s.triangles);
   for(size_type t = 0; t < n; ++t) {
     std::vector<std::size_t> out, in, adjacent;
     for(auto [e, e_end] = out_edges(t, g); e != e_end; ++e) {
@@ -466,7 +466,7 @@ TEST(AdjacencyGraphs, BreadthFirstSearchMatchesReference)
       boost::visitor(boost::make_bfs_visitor(boost::record_distances(
         boost::make_iterator_property_map(hops.begin(), get(boost::vertex_index, g)), boost::on_tree_edge()))));
     // Reference: a plain BFS over the neighbour lists computed from the triangle list.
-    const auto nb = reference_triangle_neighbours(s.triangles);
+    const auto nb = reference_triangle_neighbors(s.triangles);
     std::vector<std::size_t> expected(n, unreached);
     std::vector<std::size_t> queue{0};
     expected[0] = 0;
@@ -491,7 +491,7 @@ TEST(AdjacencyGraphs, DijkstraMatchesFloydWarshall)
     });
     const double inf = std::numeric_limits<double>::infinity();
     std::vector<std::vector<double>> floyd(n, std::vector<double>(n, inf));
-    const auto nb = reference_triangle_neighbours(s.triangles);
+    const auto nb = reference_triangle_neighbors(s.triangles);
     for(std::size_t a = 0; a < n; ++a) {
       floyd[a][a] = 0;
       for(std::size_t b : nb[a])

@@ -640,7 +640,7 @@ void check_self_join(const std::vector<Xyz>& xyz, std::size_t capacity)
   for(double r : {0.0, 1e-6, 1e-3, 2e-2, 0.3})
   {
     std::vector<int> visits(pts.size(), 0);
-    tree.for_each_neighbourhood(typename K::FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
+    tree.for_each_neighborhood(typename K::FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
       ++visits[i];
       std::vector<std::size_t> expected;
       tree.vertices_near_point(pts[i], typename K::FT(r), std::back_inserter(expected));

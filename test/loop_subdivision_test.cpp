@@ -421,7 +421,7 @@ TEST(LoopEigenAnalysis, RegularMatrixOfTheLecture)
                6, 0, 0, 0, 2, 6, 2,
                6, 2, 0, 0, 0, 2, 6;
   EXPECT_EQ(M, expected);
-  const ST::internal::Loop_eigen_analysis a = ST::internal::analyse_subdivision_matrix(M / 16., true, "regular");
+  const ST::internal::Loop_eigen_analysis a = ST::internal::analyze_subdivision_matrix(M / 16., true, "regular");
   const double lambda[7] = {1, 0.5, 0.5, 0.25, 0.25, 0.25, 0.125};
   for(int i = 0; i < 7; ++i) EXPECT_NEAR(a.eigenvalues(i), lambda[i], 1e-13) << i;
   EXPECT_NEAR(a.limit(0), 0.5, 1e-13);
@@ -436,7 +436,7 @@ TEST(LoopEigenAnalysis, SpectrumLimitAndTangentMasksForValences3To12)
     for(std::size_t k = 3; k <= 12; ++k) {
       const double beta = ST::internal::loop_beta_value(choice, k);
       const ST::internal::Loop_eigen_analysis a =
-        ST::internal::analyse_subdivision_matrix(ST::internal::loop_subdivision_matrix(k, beta), true, "test");
+        ST::internal::analyze_subdivision_matrix(ST::internal::loop_subdivision_matrix(k, beta), true, "test");
       std::vector<double> expected = {1., 5. / 8. - double(k) * beta};
       for(std::size_t j = 1; j < k; ++j) expected.push_back(3. / 8. + 0.25 * std::cos(2 * pi * double(j) / double(k)));
       std::sort(expected.begin(), expected.end(), [](double x, double y) { return std::abs(x) > std::abs(y); });
@@ -460,7 +460,7 @@ TEST(LoopEigenAnalysis, SpectrumLimitAndTangentMasksForValences3To12)
 TEST(LoopEigenAnalysis, BoundaryMask)
 {
   const ST::internal::Loop_eigen_analysis a =
-    ST::internal::analyse_subdivision_matrix(ST::internal::crease_subdivision_matrix(), false, "crease");
+    ST::internal::analyze_subdivision_matrix(ST::internal::crease_subdivision_matrix(), false, "crease");
   EXPECT_NEAR(a.eigenvalues(0), 1., 1e-14);
   EXPECT_NEAR(a.eigenvalues(1), 0.5, 1e-14);
   EXPECT_NEAR(a.eigenvalues(2), 0.25, 1e-14);
@@ -476,13 +476,13 @@ TEST(LoopEigenAnalysis, BoundaryMask)
 TEST(LoopEigenAnalysis, FailsClearlyWithoutTheEigenStructure)
 {
   // beta = 0: 5/8 is above the pair 1/2 (no subdominant pair)
-  EXPECT_THROW(ST::internal::analyse_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.), true, "beta 0"),
+  EXPECT_THROW(ST::internal::analyze_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.), true, "beta 0"),
                std::domain_error);
   // beta = 0.3 at valence 6: 5/8 - 1.8 = -1.175, outside the unit circle
-  EXPECT_THROW(ST::internal::analyse_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.3), true, "beta 0.3"),
+  EXPECT_THROW(ST::internal::analyze_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.3), true, "beta 0.3"),
                std::domain_error);
   // the identity: 1 is not simple
-  EXPECT_THROW(ST::internal::analyse_subdivision_matrix(Eigen::MatrixXd::Identity(4, 4), true, "identity"),
+  EXPECT_THROW(ST::internal::analyze_subdivision_matrix(Eigen::MatrixXd::Identity(4, 4), true, "identity"),
                std::domain_error);
 }
 

@@ -272,7 +272,7 @@ public:
   /// small against the leaves) is answered from its leaf alone, without a descent from the root;
   /// the others go through `vertices_near_point()`. The decisions are the same as there.
   template <typename Callback>
-  void for_each_neighbourhood(const FT& radius, Callback callback) const
+  void for_each_neighborhood(const FT& radius, Callback callback) const
   {
     check_radius(radius);
     if(empty())

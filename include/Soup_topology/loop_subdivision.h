@@ -356,7 +356,7 @@ struct Loop_eigen_analysis
 {
   Eigen::VectorXd eigenvalues;   ///< real parts, by decreasing modulus
   Eigen::VectorXd limit;         ///< left eigenvector of 1, entries summing to 1: the limit mask
-  Eigen::VectorXd tangent1;      ///< first subdominant left eigenvector (see `analyse_subdivision_matrix()`)
+  Eigen::VectorXd tangent1;      ///< first subdominant left eigenvector (see `analyze_subdivision_matrix()`)
   Eigen::VectorXd tangent2;      ///< second one (empty for a crease matrix)
 };
 
@@ -371,7 +371,7 @@ struct Loop_eigen_analysis
 /// `tangent1`, the element orthogonal to it with entry 1 on `q_0`, `tangent2` scaled to the
 /// same norm. (For Loop's scheme these are `cos(2 pi i / k)` and `sin(2 pi i / k)` on `q_i`.)
 /// For a crease matrix `tangent1` is the left eigenvector of 1/2 with entry 1 on `c_0`.
-inline Loop_eigen_analysis analyse_subdivision_matrix(const Eigen::MatrixXd& M, bool pair, const std::string& what)
+inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, bool pair, const std::string& what)
 {
   const Eigen::Index N = M.rows();
   const double tol = 1e-9;
@@ -449,7 +449,7 @@ public:
   {
     if(k >= smooth_.size()) smooth_.resize(k + 1);
     if(!smooth_[k])
-      smooth_[k] = std::make_unique<Loop_eigen_analysis>(analyse_subdivision_matrix(
+      smooth_[k] = std::make_unique<Loop_eigen_analysis>(analyze_subdivision_matrix(
         loop_subdivision_matrix(k, loop_beta_value(choice_, k)), true,
         "Loop subdivision matrix of valence " + std::to_string(k)));
     return *smooth_[k];
@@ -458,7 +458,7 @@ public:
   {
     if(!crease_)
       crease_ = std::make_unique<Loop_eigen_analysis>(
-        analyse_subdivision_matrix(crease_subdivision_matrix(), false, "crease subdivision matrix"));
+        analyze_subdivision_matrix(crease_subdivision_matrix(), false, "crease subdivision matrix"));
     return *crease_;
   }
 private:
@@ -663,7 +663,7 @@ loop_limit_points(const PointRange& points, const TriangleRange& triangles, cons
 /// subdivision matrix applied to its ring `(p, q_0, ..., q_{k-1})` (in the fan order of its
 /// first triangle, so `t_1 x t_2` points to the side its orientation sees as outside). The
 /// eigenspace is two-dimensional; its canonical basis is described in
-/// `internal::analyse_subdivision_matrix()` and equals `t_1 = sum cos(2 pi i / k) q_i`,
+/// `internal::analyze_subdivision_matrix()` and equals `t_1 = sum cos(2 pi i / k) q_i`,
 /// `t_2 = sum sin(2 pi i / k) q_i`. At a crease vertex, `t_1` is the tangent of the crease
 /// curve from the subdominant eigenvector (1/2) of the crease matrix, `c_0 - c_1`, and `t_2` is
 /// the null vector: Loop's boundary rules give no subdominant pair there in general. At a corner

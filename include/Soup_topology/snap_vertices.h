@@ -340,7 +340,7 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     row_start.resize(n);
     row_end.resize(n);
     std::vector<char> mate(points.size(), 0);
-    tree.for_each_neighbourhood(eps, [&](std::size_t c, const std::vector<std::size_t>& found) {
+    tree.for_each_neighborhood(eps, [&](std::size_t c, const std::vector<std::size_t>& found) {
       for(size_type t : tables.triangles_around_vertex(candidates[c]))
         for(size_type v : tables.triangle(t)) mate[v] = 1;
       row_start[c] = row.size();
