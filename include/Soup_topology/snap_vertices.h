@@ -221,13 +221,11 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
   using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
-  using Point_map = typename NP_helper::Point_map;
   using Point = typename NP_helper::Point;
   using Kernel = typename NP_helper::Geom_traits;
   using FT = typename NP_helper::FT;
   using size_type = Adjacency_tables::size_type;
 
-  const Point_map pm = NP_helper::get_point_map(np);
   const Kernel kernel = NP_helper::get_geom_traits(np);
   // The visitor: a reference when given as `std::ref(v)`, otherwise a copy.
   Default_snap_visitor default_visitor;
@@ -245,9 +243,7 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   if(fixed != nullptr && fixed->size() != points.size()) fixed = nullptr;
 
   // The points, read once: a readable map may return them by value.
-  std::vector<Point> point_copy;
-  point_copy.reserve(points.size());
-  for(const auto& e : points) point_copy.push_back(get(pm, e));
+  const std::vector<Point> point_copy = NP_helper::read_points(points, np);
   auto point = [&](std::size_t v) -> const Point& { return point_copy[v]; };
   typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
   typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();

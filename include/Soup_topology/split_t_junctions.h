@@ -176,21 +176,17 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
                                const NamedParameters& np = CGAL::parameters::default_values())
 {
   using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
-  using Point_map = typename NP_helper::Point_map;
   using Point = typename NP_helper::Point;
   using Kernel = typename NP_helper::Geom_traits;
   using FT = typename NP_helper::FT;
   using size_type = Adjacency_tables::size_type;
 
-  const Point_map pm = NP_helper::get_point_map(np);
   const Kernel kernel = NP_helper::get_geom_traits(np);
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   const FT eps2 = eps * eps;
 
   // The points, read once: a readable map may return them by value.
-  std::vector<Point> point_copy;
-  point_copy.reserve(points.size());
-  for(const auto& e : points) point_copy.push_back(get(pm, e));
+  const std::vector<Point> point_copy = NP_helper::read_points(points, np);
   auto point = [&](std::size_t v) -> const Point& { return point_copy[v]; };
   typename Kernel::Compare_squared_distance_3 compare_sq = kernel.compare_squared_distance_3_object();
   typename Kernel::Compare_distance_3 compare_distance = kernel.compare_distance_3_object();

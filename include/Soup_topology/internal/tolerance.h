@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 #include <type_traits>
 
 namespace Soup_topology {
@@ -119,6 +120,15 @@ struct Soup_np_helper
   static Geom_traits get_geom_traits(const NamedParameters& np)
   {
     return CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  }
+  /// the points of `points`, read once through the point map (a readable map may return them by value).
+  static std::vector<Point> read_points(const PointRange& points, const NamedParameters& np)
+  {
+    const Point_map pm = get_point_map(np);
+    std::vector<Point> copy;
+    copy.reserve(points.size());
+    for(const auto& e : points) copy.push_back(get(pm, e));
+    return copy;
   }
   /// checks the points (finite) and the tables (they describe `triangles` over `points`), then
   /// returns the tolerance; throws `Invalid_input` naming `function` otherwise.
