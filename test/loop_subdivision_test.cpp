@@ -286,7 +286,7 @@ TEST(LoopSubdivision, WarrenBeta)
     std::vector<Triangle> triangles;
     bipyramid(k, points, triangles);
     const std::vector<Point> before = points;
-    ST::loop_subdivision(points, triangles, ST::parameters::loop_beta(ST::Loop_beta::warren));
+    ST::loop_subdivision(points, triangles, ST::parameters::loop_beta(ST::Loop_beta::WARREN));
     const double beta = k == 3 ? 3. / 16. : 3. / (8. * double(k));
     Vector expected = (1. - double(k) * beta) * (before[0] - CGAL::ORIGIN);
     for(std::size_t i = 1; i <= k; ++i) expected = expected + beta * (before[i] - CGAL::ORIGIN);
@@ -302,7 +302,7 @@ TEST(LoopSubdivision, ChainsWithCgalParameters)
   ST::Adjacency_tables tables;
   ST::loop_subdivision(points, triangles,
                        ST::parameters::output_adjacency_tables(
-                         &tables, ST::parameters::loop_beta(ST::Loop_beta::loop,
+                         &tables, ST::parameters::loop_beta(ST::Loop_beta::LOOP,
                                                             CGAL::parameters::number_of_iterations(3).geom_traits(K()))));
   EXPECT_EQ(triangles.size(), 12u * 64u);
   EXPECT_EQ(tables.number_of_triangles(), triangles.size());
@@ -411,7 +411,7 @@ TEST(LoopSubdivision, VectorFacesAndEmptyInput)
 // row i is 6/16 for the centre and q_i and 2/16 for q_{i-1} and q_{i+1}.
 TEST(LoopEigenAnalysis, RegularMatrixOfTheLecture)
 {
-  const Eigen::MatrixXd M = 16. * ST::internal::loop_subdivision_matrix(6, ST::internal::loop_beta_value(ST::Loop_beta::loop, 6));
+  const Eigen::MatrixXd M = 16. * ST::internal::loop_subdivision_matrix(6, ST::internal::loop_beta_value(ST::Loop_beta::LOOP, 6));
   Eigen::MatrixXd expected(7, 7);
   expected << 10, 1, 1, 1, 1, 1, 1,
                6, 6, 2, 0, 0, 0, 2,
@@ -432,7 +432,7 @@ TEST(LoopEigenAnalysis, RegularMatrixOfTheLecture)
 // limit mask equals the closed form and the tangent masks are cos and sin.
 TEST(LoopEigenAnalysis, SpectrumLimitAndTangentMasksForValences3To12)
 {
-  for(ST::Loop_beta choice : {ST::Loop_beta::loop, ST::Loop_beta::warren})
+  for(ST::Loop_beta choice : {ST::Loop_beta::LOOP, ST::Loop_beta::WARREN})
     for(std::size_t k = 3; k <= 12; ++k) {
       const double beta = ST::internal::loop_beta_value(choice, k);
       const ST::internal::Loop_eigen_analysis a =
@@ -477,13 +477,13 @@ TEST(LoopEigenAnalysis, FailsClearlyWithoutTheEigenStructure)
 {
   // beta = 0: 5/8 is above the pair 1/2 (no subdominant pair)
   EXPECT_THROW(ST::internal::analyze_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.), true, "beta 0"),
-               std::domain_error);
+               ST::Invalid_input);
   // beta = 0.3 at valence 6: 5/8 - 1.8 = -1.175, outside the unit circle
   EXPECT_THROW(ST::internal::analyze_subdivision_matrix(ST::internal::loop_subdivision_matrix(6, 0.3), true, "beta 0.3"),
-               std::domain_error);
+               ST::Invalid_input);
   // the identity: 1 is not simple
   EXPECT_THROW(ST::internal::analyze_subdivision_matrix(Eigen::MatrixXd::Identity(4, 4), true, "identity"),
-               std::domain_error);
+               ST::Invalid_input);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -495,7 +495,7 @@ TEST(LoopLimit, LimitPointsEqualTheClosedFormMasks)
     std::vector<Point> points;
     std::vector<Triangle> triangles;
     bipyramid(k, points, triangles);
-    for(ST::Loop_beta choice : {ST::Loop_beta::loop, ST::Loop_beta::warren}) {
+    for(ST::Loop_beta choice : {ST::Loop_beta::LOOP, ST::Loop_beta::WARREN}) {
       const std::vector<Point> limits = ST::loop_limit_points(points, triangles, ST::parameters::loop_beta(choice));
       const double beta = ST::internal::loop_beta_value(choice, k);
       std::vector<Point> ring(points.begin() + 1, points.begin() + 1 + std::ptrdiff_t(k));

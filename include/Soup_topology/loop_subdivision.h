@@ -10,13 +10,12 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/index_triangles.h>
+#include <Soup_topology/parameters.h>
 #include <Soup_topology/internal/soup_checks.h>
-#include <Soup_topology/internal/subdivision_parameters.h>
+#include <Soup_topology/internal/tolerance.h>
 
-#include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/Origin.h>
-#include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/property_map.h>
 
@@ -30,13 +29,25 @@
 #include <cstdint>
 #include <iterator>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologySubdivision
+/// \brief the weight `beta` given to each of the `k` neighbors of a smooth vertex of valence `k`
+/// by Loop's vertex rule `(1 - k beta) p + beta sum(q_i)`; the value of the named parameter `loop_beta`.
+enum class Loop_beta
+{
+  /// Loop's original choice, `beta = (5/8 - (3/8 + 1/4 cos(2 pi / k))^2) / k` (the default; the
+  /// one of `CGAL::Subdivision_method_3::Loop_subdivision`).
+  LOOP,
+  /// Warren's simplification, `beta = 3 / (8 k)` for `k > 3` and `3/16` for `k = 3`.
+  WARREN
+};
+
 namespace internal {
 
 /// `beta` of Loop's vertex rule for a smooth vertex of valence `k`.
@@ -44,7 +55,7 @@ inline double loop_beta_value(Loop_beta choice, std::size_t k)
 {
   if(k == 0) return 0.;
   const double dk = static_cast<double>(k);
-  if(choice == Loop_beta::warren) return k == 3 ? 3. / 16. : 3. / (8. * dk);
+  if(choice == Loop_beta::WARREN) return k == 3 ? 3. / 16. : 3. / (8. * dk);
   if(k == 6) return 1. / 16.;   // the regular case, exactly (the formula gives it up to rounding)
   const double c = 3. / 8. + 0.25 * std::cos(2. * CGAL_PI / dk);
   return (5. / 8. - c * c) / dk;
@@ -53,9 +64,9 @@ inline double loop_beta_value(Loop_beta choice, std::size_t k)
 /// The role of a vertex in Loop's scheme.
 enum class Loop_vertex_kind : std::uint8_t
 {
-  smooth,  ///< no crease edge and a single fan of triangles: Loop's vertex rule
-  crease,  ///< exactly two crease (border or non-manifold) edges: the rule 1/8, 3/4, 1/8
-  corner   ///< anything else (isolated, one or more than two crease edges, a pinch): fixed
+  SMOOTH,  ///< no crease edge and a single fan of triangles: Loop's vertex rule
+  CREASE,  ///< exactly two crease (border or non-manifold) edges: the rule 1/8, 3/4, 1/8
+  CORNER   ///< anything else (isolated, one or more than two crease edges, a pinch): fixed
 };
 
 /// The edges of one level of subdivision: every triangle edge `3t + i` has an edge id; an edge
@@ -91,7 +102,7 @@ struct Loop_level
     }
   }
 
-  /// level 0: the edge ids from the edge-neighbour table, the vertex kinds from the crease
+  /// level 0: the edge ids from the edge-neighbor table, the vertex kinds from the crease
   /// edges and a walk around each vertex.
   void initialize(const Adjacency_tables& adj)
   {
@@ -127,11 +138,11 @@ struct Loop_level
       if(is_crease(e))
         for(Index v : {first_vertex(e), second_vertex(e)})
           if(creases[v] < 3) ++creases[v];
-    kind.assign(n, Loop_vertex_kind::corner);
+    kind.assign(n, Loop_vertex_kind::CORNER);
     for(size_type v = 0; v < n; ++v) {
       if(adj.degree(v) == 0) continue;
-      if(creases[v] == 2) kind[v] = Loop_vertex_kind::crease;
-      else if(creases[v] == 0 && is_single_fan(adj, v)) kind[v] = Loop_vertex_kind::smooth;
+      if(creases[v] == 2) kind[v] = Loop_vertex_kind::CREASE;
+      else if(creases[v] == 0 && is_single_fan(adj, v)) kind[v] = Loop_vertex_kind::SMOOTH;
     }
   }
 
@@ -156,7 +167,7 @@ struct Loop_level
     size_type q = adj.vertex(t0, (iv + 1) % 3);
     for(std::size_t step = 0; step < adj.degree(v); ++step) {
       f(q);
-      // the third vertex of t, then the neighbour across (v, third)
+      // the third vertex of t, then the neighbor across (v, third)
       const int iq = adj.local_index(t, q), jv = adj.local_index(t, v);
       const size_type next = adj.vertex(t, 3 - iq - jv);
       const size_type u = adj.neighbor(t, adj.edge_index(t, v, next));
@@ -236,7 +247,7 @@ struct Loop_level
         c[inner] = 2;
       }
     kind.reserve(n + E);
-    for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::crease : Loop_vertex_kind::smooth);
+    for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH);
     edge_of.swap(child_edges);
     number_of_edges = E2;
     triangles.swap(children);
@@ -276,21 +287,21 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
     const Vector va = vec(a), vb = vec(b);
     if(level.is_crease(e)) {
       out[n + e] = translate(origin, scale(add(va, vb), half));
-      if(level.kind[a] == Loop_vertex_kind::crease) ring[a].sum = add(ring[a].sum, vb);
-      if(level.kind[b] == Loop_vertex_kind::crease) ring[b].sum = add(ring[b].sum, va);
+      if(level.kind[a] == Loop_vertex_kind::CREASE) ring[a].sum = add(ring[a].sum, vb);
+      if(level.kind[b] == Loop_vertex_kind::CREASE) ring[b].sum = add(ring[b].sum, va);
     } else {
       const Index h2 = level.half2[e];
       const Index c = tr[(i + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
       out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
-      if(level.kind[a] == Loop_vertex_kind::smooth) { ring[a].sum = add(ring[a].sum, vb); ++ring[a].valence; }
-      if(level.kind[b] == Loop_vertex_kind::smooth) { ring[b].sum = add(ring[b].sum, va); ++ring[b].valence; }
+      if(level.kind[a] == Loop_vertex_kind::SMOOTH) { ring[a].sum = add(ring[a].sum, vb); ++ring[a].valence; }
+      if(level.kind[b] == Loop_vertex_kind::SMOOTH) { ring[b].sum = add(ring[b].sum, va); ++ring[b].valence; }
     }
   }
   std::vector<double> betas;
   const FT three_quarters(0.75);
   for(Index v = 0; v < n; ++v) {
     switch(level.kind[v]) {
-    case Loop_vertex_kind::smooth: {
+    case Loop_vertex_kind::SMOOTH: {
       const std::size_t k = ring[v].valence;
       if(k >= betas.size()) {
         const std::size_t old = betas.size();
@@ -302,7 +313,7 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
       out[v] = translate(origin, add(scale(vec(v), centre), scale(ring[v].sum, beta)));
       break;
     }
-    case Loop_vertex_kind::crease:
+    case Loop_vertex_kind::CREASE:
       out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(ring[v].sum, eighth)));
       break;
     default:
@@ -310,16 +321,6 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
     }
   }
 }
-
-template <class PointRange, class NamedParameters>
-struct Loop_np_helper
-{
-  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::const_type;
-  using Point = typename boost::property_traits<Point_map>::value_type;
-  using Default_traits = typename CGAL::Kernel_traits<Point>::Kernel;
-  using Geom_traits = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t,
-                                                                         NamedParameters, Default_traits>::type;
-};
 
 /// The local subdivision matrix of a smooth vertex of valence `k` acting on `(p, q_0, ...,
 /// q_{k-1})` (the vertex then its ring in fan order): row 0 is the vertex rule
@@ -341,7 +342,7 @@ inline Eigen::MatrixXd loop_subdivision_matrix(std::size_t k, double beta)
 }
 
 /// The local subdivision matrix of a crease vertex acting on `(p, c_0, c_1)` (the vertex and
-/// its two crease neighbours): `p' = 3/4 p + 1/8 (c_0 + c_1)`, `c_i' = (p + c_i) / 2`.
+/// its two crease neighbors): `p' = 3/4 p + 1/8 (c_0 + c_1)`, `c_i' = (p + c_i) / 2`.
 inline Eigen::MatrixXd crease_subdivision_matrix()
 {
   Eigen::MatrixXd M(3, 3);
@@ -363,7 +364,7 @@ struct Loop_eigen_analysis
 /// eigen-analysis of `M` (a smooth matrix when `pair` is true, a crease matrix otherwise).
 /// Checks that 1 is a simple and dominant eigenvalue, and that the subdominant eigenvalue is a
 /// real pair of equal values (smooth) or simple (crease) strictly above the others in modulus;
-/// throws `std::domain_error` naming the failing property otherwise.
+/// throws `Invalid_input` naming the failing property otherwise.
 ///
 /// The limit mask is the left eigenvector of eigenvalue 1 normalised to a sum of 1. For a smooth
 /// matrix, the left eigenspace of the subdominant pair is two-dimensional; its canonical basis
@@ -376,7 +377,7 @@ inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, 
   const Eigen::Index N = M.rows();
   const double tol = 1e-9;
   Eigen::EigenSolver<Eigen::MatrixXd> solver(M, false);
-  if(solver.info() != Eigen::Success) throw std::domain_error(what + ": the eigen-decomposition failed");
+  if(solver.info() != Eigen::Success) throw Invalid_input(what + ": the eigen-decomposition failed");
   Eigen::VectorXcd lambda = solver.eigenvalues();
   std::vector<std::complex<double>> sorted(lambda.data(), lambda.data() + N);
   std::sort(sorted.begin(), sorted.end(), [](const std::complex<double>& a, const std::complex<double>& b) {
@@ -387,21 +388,21 @@ inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, 
   for(Eigen::Index i = 0; i < N; ++i) result.eigenvalues(i) = sorted[std::size_t(i)].real();
   auto text = [](const std::complex<double>& z) { return std::to_string(z.real()) + (std::abs(z.imag()) > 0 ? "+" + std::to_string(z.imag()) + "i" : std::string()); };
   if(std::abs(sorted[0] - 1.) > tol)
-    throw std::domain_error(what + ": the dominant eigenvalue is " + text(sorted[0]) + ", not 1 (no convergence)");
+    throw Invalid_input(what + ": the dominant eigenvalue is " + text(sorted[0]) + ", not 1 (no convergence)");
   if(N > 1 && std::abs(sorted[1]) > 1. - tol)
-    throw std::domain_error(what + ": the eigenvalue 1 is not simple and dominant (next eigenvalue " + text(sorted[1]) + ")");
+    throw Invalid_input(what + ": the eigenvalue 1 is not simple and dominant (next eigenvalue " + text(sorted[1]) + ")");
   const std::size_t sub = pair ? 2 : 1;
   if(std::size_t(N) < 1 + sub)
-    throw std::domain_error(what + ": the matrix is too small for a subdominant eigenvalue");
+    throw Invalid_input(what + ": the matrix is too small for a subdominant eigenvalue");
   if(pair) {
     if(std::abs(sorted[1] - sorted[2]) > tol || std::abs(sorted[1].imag()) > tol || std::abs(sorted[2].imag()) > tol)
-      throw std::domain_error(what + ": the subdominant eigenvalues " + text(sorted[1]) + " and " + text(sorted[2]) +
+      throw Invalid_input(what + ": the subdominant eigenvalues " + text(sorted[1]) + " and " + text(sorted[2]) +
                               " are not an equal real pair");
   } else if(std::abs(sorted[1].imag()) > tol) {
-    throw std::domain_error(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not real");
+    throw Invalid_input(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not real");
   }
   if(std::size_t(N) > 1 + sub && std::abs(sorted[1 + sub]) > std::abs(sorted[1]) - tol)
-    throw std::domain_error(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not strictly above " +
+    throw Invalid_input(what + ": the subdominant eigenvalue " + text(sorted[1]) + " is not strictly above " +
                             text(sorted[1 + sub]) + " in modulus");
 
   // Left eigenvectors: the null spaces of M^T - lambda I, from the singular value decomposition.
@@ -410,9 +411,9 @@ inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, 
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
     const Eigen::VectorXd& s = svd.singularValues();   // decreasing
     for(Eigen::Index i = N - dimension; i < N; ++i)
-      if(s(i) > tol) throw std::domain_error(what + ": no left eigenvector for eigenvalue " + std::to_string(value));
+      if(s(i) > tol) throw Invalid_input(what + ": no left eigenvector for eigenvalue " + std::to_string(value));
     if(N - dimension - 1 >= 0 && s(N - dimension - 1) < tol)
-      throw std::domain_error(what + ": the eigenspace of " + std::to_string(value) + " is larger than expected");
+      throw Invalid_input(what + ": the eigenspace of " + std::to_string(value) + " is larger than expected");
     return Eigen::MatrixXd(svd.matrixV().rightCols(dimension));
   };
   result.limit = null_space(1., 1).col(0);
@@ -421,12 +422,12 @@ inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, 
     const double mu = 0.5 * (sorted[1].real() + sorted[2].real());
     const Eigen::MatrixXd B = null_space(mu, 2);
     Eigen::VectorXd s = B.col(0) * B(1, 1) - B.col(1) * B(1, 0);   // zero entry on q_0
-    if(s.norm() < tol) throw std::domain_error(what + ": degenerate subdominant eigenspace");
+    if(s.norm() < tol) throw Invalid_input(what + ": degenerate subdominant eigenspace");
     s /= s.norm();
     const Eigen::Index j = std::abs(B.col(0).dot(s)) < std::abs(B.col(1).dot(s)) ? 0 : 1;
     Eigen::VectorXd c = B.col(j);
     c -= c.dot(s) * s;
-    if(std::abs(c(1)) < tol) throw std::domain_error(what + ": degenerate subdominant eigenspace");
+    if(std::abs(c(1)) < tol) throw Invalid_input(what + ": degenerate subdominant eigenspace");
     c /= c(1);
     s *= c.norm();
     if(s(2) < 0) s = -s;
@@ -434,7 +435,7 @@ inline Loop_eigen_analysis analyze_subdivision_matrix(const Eigen::MatrixXd& M, 
     result.tangent2 = s;
   } else {
     Eigen::VectorXd c = null_space(sorted[1].real(), 1).col(0);
-    if(std::abs(c(1)) < tol) throw std::domain_error(what + ": degenerate subdominant eigenvector");
+    if(std::abs(c(1)) < tol) throw Invalid_input(what + ": degenerate subdominant eigenvector");
     result.tangent1 = c / c(1);
   }
   return result;
@@ -477,7 +478,7 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
   const Adjacency_tables adj(triangles, n);
   Loop_level level;
   level.initialize(adj);
-  // the two crease neighbours of every crease vertex, in edge order
+  // the two crease neighbors of every crease vertex, in edge order
   std::vector<std::array<Index, 2>> crease_ring(n, {Loop_level::none, Loop_level::none});
   for(Index e = 0; e < level.number_of_edges; ++e) {
     if(!level.is_crease(e)) continue;
@@ -491,19 +492,67 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
     ring.clear();
     ring.push_back(v);
     switch(level.kind[v]) {
-    case Loop_vertex_kind::smooth:
+    case Loop_vertex_kind::SMOOTH:
       Loop_level::walk_ring(adj, v, [&](Index q) { ring.push_back(q); });
-      f(v, Loop_vertex_kind::smooth, ring, cache.smooth(ring.size() - 1));
+      f(v, Loop_vertex_kind::SMOOTH, ring, cache.smooth(ring.size() - 1));
       break;
-    case Loop_vertex_kind::crease:
+    case Loop_vertex_kind::CREASE:
       ring.push_back(crease_ring[v][0]);
       ring.push_back(crease_ring[v][1]);
-      f(v, Loop_vertex_kind::crease, ring, cache.crease());
+      f(v, Loop_vertex_kind::CREASE, ring, cache.crease());
       break;
     default:
-      f(v, Loop_vertex_kind::corner, ring, cache.crease());
+      f(v, Loop_vertex_kind::CORNER, ring, cache.crease());
     }
   }
+}
+
+/// the value of the named parameter `loop_beta` of `np` (`Loop_beta::LOOP` by default).
+template <class NamedParameters>
+Loop_beta get_loop_beta(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::loop_beta),
+                                            Loop_beta::LOOP);
+}
+
+/// The shared body of `loop_limit_points()` and `loop_limit_tangents()`: reads the points of
+/// `points` through the point map of `np`, then sets the value of every vertex `v` to
+/// `corner_value(p)` at a corner (`p` its point) and to `stencil(combine, analysis)` elsewhere,
+/// where `combine(weights)` is the vector from the origin to the combination of the points of the
+/// ring of `v` (the vertex first) with the weights `weights`.
+template <class Value, class PointRange, class TriangleRange, class NamedParameters, class CornerValue, class Stencil>
+std::vector<Value> evaluate_limit_stencils(const PointRange& points, const TriangleRange& triangles,
+                                           const NamedParameters& np, CornerValue corner_value, Stencil stencil)
+{
+  using NP_helper = Soup_np_helper<PointRange, NamedParameters>;
+  using GT = typename NP_helper::Geom_traits;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using FT = typename GT::FT;
+
+  const GT gt = NP_helper::get_geom_traits(np);
+  check_finite_points(points, NP_helper::get_point_map(np));
+  auto to_vector = gt.construct_vector_3_object();
+  auto add = gt.construct_sum_of_vectors_3_object();
+  auto scale = gt.construct_scaled_vector_3_object();
+  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
+
+  const std::vector<Point> input = NP_helper::read_points(points, np);
+  std::vector<Value> result;
+  result.reserve(input.size());
+  for(const Point& p : input) result.push_back(corner_value(p));
+  for_each_limit_stencil(points, triangles, get_loop_beta(np),
+    [&](std::size_t v, Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring, const Loop_eigen_analysis& a) {
+      if(kind == Loop_vertex_kind::CORNER) return;
+      const auto combine = [&](const Eigen::VectorXd& weights) {
+        Vector sum = CGAL::NULL_VECTOR;
+        for(std::size_t i = 0; i < ring.size(); ++i)
+          sum = add(sum, scale(to_vector(origin, input[ring[i]]), FT(weights(Eigen::Index(i)))));
+        return sum;
+      };
+      result[v] = stencil(combine, a);
+    });
+  return result;
 }
 
 } // namespace internal
@@ -528,7 +577,7 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
 ///   or isolated): fixed.
 ///
 /// The smooth and border rules are those of `CGAL::Subdivision_method_3::Loop_subdivision` for
-/// `Loop_beta::loop`. Only the first level builds `Adjacency_tables`: the edges of the next level
+/// `Loop_beta::LOOP`. Only the first level builds `Adjacency_tables`: the edges of the next level
 /// are derived from the current ones in constant time per triangle, and the vertex kinds are
 /// inherited (an edge point is smooth on a smooth edge, a crease vertex on a crease edge).
 /// Linear time and memory per level.
@@ -537,34 +586,48 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
 ///         default constructible; its points are read and written through `point_map`
 /// \tparam TriangleRange a `std::vector`-like container of triangles (`std::array<std::size_t,3>`,
 ///         `std::vector<int>`, ...)
+/// \param points the points of the soup; subdivided in place
+/// \param triangles the triangles of the soup, indices into `points`; replaced by the subdivided triangles
+/// \param np an optional sequence of named parameters among the ones listed below
+///
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{number_of_iterations} \cgalParamType{unsigned int} \cgalParamDefault{1} \cgalParamNEnd
-///   \cgalParamNBegin{loop_beta} \cgalParamType{`Soup_topology::Loop_beta`} \cgalParamDefault{`Loop_beta::loop`} \cgalParamNEnd
-///   \cgalParamNBegin{output_adjacency_tables} \cgalParamType{`Adjacency_tables*`}
+///   \cgalParamNBegin{number_of_iterations}
+///     \cgalParamDescription{the number of levels of subdivision}
+///     \cgalParamType{unsigned int} \cgalParamDefault{1} \cgalParamNEnd
+///   \cgalParamNBegin{loop_beta}
+///     \cgalParamDescription{the weight `beta` of Loop's vertex rule}
+///     \cgalParamType{`Soup_topology::Loop_beta`} \cgalParamDefault{`Loop_beta::LOOP`} \cgalParamNEnd
+///   \cgalParamNBegin{output_adjacency_tables}
 ///     \cgalParamDescription{if not null, receives the tables of the result (built from the result's
-///     triangles, linear time)} \cgalParamDefault{`nullptr`} \cgalParamNEnd
-///   \cgalParamNBegin{point_map} \cgalParamType{a model of `ReadWritePropertyMap` from the value type
-///     of `PointRange` to `Point_3`} \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+///     triangles, linear time)}
+///     \cgalParamType{`Adjacency_tables*`} \cgalParamDefault{`nullptr`} \cgalParamNEnd
+///   \cgalParamNBegin{point_map}
+///     \cgalParamDescription{a property map through which the points of `points` are read and written}
+///     \cgalParamType{a model of `ReadWritePropertyMap` from the value type of `PointRange` to `Point_3`}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{the constructions of the rules (vectors, their sums and multiples)}
+///     \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \throws Invalid_input for a face that is not a triangle, a repeated or out-of-range index or a
 ///         non-finite coordinate; `points` and `triangles` are unchanged then.
 /// \sa `loop_limit_points()`, `loop_limit_tangents()`
-template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
-void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void loop_subdivision(PointRange& points, TriangleRange& triangles,
+                      const NamedParameters& np = CGAL::parameters::default_values())
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
-  using GT = typename Helper::Geom_traits;
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using GT = typename NP_helper::Geom_traits;
   using Point = typename GT::Point_3;
-  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::type;
+  using Point_map = typename NP_helper::Writable_point_map;
 
-  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
-  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const Point_map point_map = NP_helper::get_writable_point_map(np);
+  const GT gt = NP_helper::get_geom_traits(np);
   const unsigned int iterations =
     static_cast<unsigned int>(choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 1u));
-  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
+  const Loop_beta choice = internal::get_loop_beta(np);
   Adjacency_tables* tables = choose_parameter(get_parameter(np, internal_np::output_adjacency_tables),
                                               static_cast<Adjacency_tables*>(nullptr));
 
@@ -614,46 +677,41 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles, const CGAL_N
 ///   B-spline), mask `2/3 p + 1/6 (c_0 + c_1)`;
 /// - corner: the point itself.
 ///
-/// Parameters, bad input and the vertex kinds are those of `loop_subdivision()` (without
-/// `number_of_iterations` and `output_adjacency_tables`).
-/// \throws std::domain_error if a local matrix has not 1 as a simple dominant eigenvalue followed
-///         by an equal real subdominant pair (it never happens for `Loop_beta::loop` and `warren`).
-template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
-std::vector<typename internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>::Geom_traits::Point_3>
-loop_limit_points(const PointRange& points, const TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+/// Bad input and the vertex kinds are those of `loop_subdivision()`.
+/// \tparam PointRange a random-access container whose points are read through `point_map`
+/// \tparam TriangleRange a `std::vector`-like container of triangles
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup, indices into `points`
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{loop_beta}
+///     \cgalParamDescription{the weight `beta` of Loop's vertex rule, which the limit masks depend on}
+///     \cgalParamType{`Soup_topology::Loop_beta`} \cgalParamDefault{`Loop_beta::LOOP`} \cgalParamNEnd
+///   \cgalParamNBegin{point_map}
+///     \cgalParamDescription{a property map through which the points of `points` are read}
+///     \cgalParamType{a model of `ReadablePropertyMap` from the value type of `PointRange` to `Point_3`}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{the constructions of the masks (vectors, their sums and multiples)}
+///     \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+/// \throws Invalid_input as `loop_subdivision()`, and if a local matrix has not 1 as a simple
+///         dominant eigenvalue followed by an equal real subdominant pair (it never happens for
+///         `Loop_beta::LOOP` and `Loop_beta::WARREN`).
+template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+std::vector<typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits::Point_3>
+loop_limit_points(const PointRange& points, const TriangleRange& triangles,
+                  const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
-  using GT = typename Helper::Geom_traits;
+  using GT = typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits;
   using Point = typename GT::Point_3;
-  using Vector = typename GT::Vector_3;
-  using FT = typename GT::FT;
-  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::const_type;
-
-  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
-  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
-  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
-  internal::check_finite_points(points, point_map);
-  auto to_vector = gt.construct_vector_3_object();
-  auto add = gt.construct_sum_of_vectors_3_object();
-  auto scale = gt.construct_scaled_vector_3_object();
-  auto translate = gt.construct_translated_point_3_object();
+  const GT gt = internal::Soup_np_helper<PointRange, NamedParameters>::get_geom_traits(np);
   const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
-
-  std::vector<Point> input;
-  for(const auto& p : points) input.push_back(get(point_map, p));
-  std::vector<Point> result(input.size());
-  internal::for_each_limit_stencil(points, triangles, choice,
-    [&](std::size_t v, internal::Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring,
-        const internal::Loop_eigen_analysis& a) {
-      if(kind == internal::Loop_vertex_kind::corner) { result[v] = input[v]; return; }
-      Vector sum = CGAL::NULL_VECTOR;
-      for(std::size_t i = 0; i < ring.size(); ++i)
-        sum = add(sum, scale(to_vector(origin, input[ring[i]]), FT(a.limit(Eigen::Index(i)))));
-      result[v] = translate(origin, sum);
-    });
-  return result;
+  auto translate = gt.construct_translated_point_3_object();
+  return internal::evaluate_limit_stencils<Point>(
+    points, triangles, np, [](const Point& p) { return p; },
+    [&](const auto& combine, const internal::Loop_eigen_analysis& a) { return translate(origin, combine(a.limit)); });
 }
 
 /// \ingroup PkgSoupTopologySubdivision
@@ -669,46 +727,27 @@ loop_limit_points(const PointRange& points, const TriangleRange& triangles, cons
 /// the null vector: Loop's boundary rules give no subdominant pair there in general. At a corner
 /// both are null vectors.
 ///
-/// Parameters as for `loop_limit_points()`.
-/// \throws std::domain_error as `loop_limit_points()`.
-template <typename PointRange, typename TriangleRange, typename CGAL_NP_TEMPLATE_PARAMETERS>
-std::vector<std::array<typename internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>::Geom_traits::Vector_3, 2>>
-loop_limit_tangents(const PointRange& points, const TriangleRange& triangles, const CGAL_NP_CLASS& np = parameters::default_values())
+/// \tparam PointRange a random-access container whose points are read through `point_map`
+/// \tparam TriangleRange a `std::vector`-like container of triangles
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup, indices into `points`
+/// \param np an optional sequence of named parameters: those of `loop_limit_points()`
+/// \throws Invalid_input as `loop_limit_points()`.
+template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+std::vector<std::array<typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits::Vector_3, 2>>
+loop_limit_tangents(const PointRange& points, const TriangleRange& triangles,
+                    const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  using Helper = internal::Loop_np_helper<PointRange, CGAL_NP_CLASS>;
-  using GT = typename Helper::Geom_traits;
-  using Point = typename GT::Point_3;
+  using GT = typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits;
   using Vector = typename GT::Vector_3;
-  using FT = typename GT::FT;
-  using Point_map = typename CGAL::GetPointMap<PointRange, CGAL_NP_CLASS>::const_type;
-
-  const Point_map point_map = choose_parameter<Point_map>(get_parameter(np, CGAL::internal_np::point_map));
-  const GT gt = choose_parameter<GT>(get_parameter(np, CGAL::internal_np::geom_traits));
-  const Loop_beta choice = choose_parameter(get_parameter(np, internal_np::loop_beta), Loop_beta::loop);
-  internal::check_finite_points(points, point_map);
-  auto to_vector = gt.construct_vector_3_object();
-  auto add = gt.construct_sum_of_vectors_3_object();
-  auto scale = gt.construct_scaled_vector_3_object();
-  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
-
-  std::vector<Point> input;
-  for(const auto& p : points) input.push_back(get(point_map, p));
-  std::vector<std::array<Vector, 2>> result(input.size(), {Vector(CGAL::NULL_VECTOR), Vector(CGAL::NULL_VECTOR)});
-  internal::for_each_limit_stencil(points, triangles, choice,
-    [&](std::size_t v, internal::Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring,
-        const internal::Loop_eigen_analysis& a) {
-      if(kind == internal::Loop_vertex_kind::corner) return;
-      Vector t1 = CGAL::NULL_VECTOR, t2 = CGAL::NULL_VECTOR;
-      for(std::size_t i = 0; i < ring.size(); ++i) {
-        const Vector q = to_vector(origin, input[ring[i]]);
-        t1 = add(t1, scale(q, FT(a.tangent1(Eigen::Index(i)))));
-        if(a.tangent2.size() > 0) t2 = add(t2, scale(q, FT(a.tangent2(Eigen::Index(i)))));
-      }
-      result[v] = {t1, t2};
+  using Tangents = std::array<Vector, 2>;
+  return internal::evaluate_limit_stencils<Tangents>(
+    points, triangles, np,
+    [](const typename GT::Point_3&) { return Tangents{Vector(CGAL::NULL_VECTOR), Vector(CGAL::NULL_VECTOR)}; },
+    [](const auto& combine, const internal::Loop_eigen_analysis& a) {
+      return Tangents{combine(a.tangent1),
+                      a.tangent2.size() > 0 ? combine(a.tangent2) : Vector(CGAL::NULL_VECTOR)};
     });
-  return result;
 }
 
 } // namespace Soup_topology

@@ -1,12 +1,11 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// The package's named parameters. They chain with CGAL's: CGAL already has `geom_traits`,
-// `point_map`, `snapping_tolerance`, `visitor`, `number_of_iterations` and `verbose`, which the
-// package reuses; new tags exist only for what CGAL lacks. The octree's parameters
-// (`bucket_capacity`, `maximum_depth`, `segment_query_strategy`) and the subdivision's are
-// declared beside their algorithms and included here, so this header gives all of them. Each builder has a one-argument form
-// that starts a chain and a two-argument form that appends to an existing chain:
+// The package's named parameters, all declared here by one macro. They chain with CGAL's: CGAL
+// already has `geom_traits`, `point_map`, `snapping_tolerance`, `visitor`,
+// `number_of_iterations` and `verbose`, which the package reuses; new tags exist only for what
+// CGAL lacks. Each builder has a one-argument form that starts a chain and a two-argument form
+// that appends to an existing chain:
 //   Soup_topology::parameters::relative_tolerance(1e-6, CGAL::parameters::geom_traits(K()))
 // CGAL's own parameters chain as members (`.geom_traits(k).visitor(v)`), but CGAL 5.5 fixes the
 // list of members (no `combine` either): a package parameter therefore wraps a CGAL chain, as
@@ -15,11 +14,13 @@
 #ifndef SOUP_TOPOLOGY_PARAMETERS_H
 #define SOUP_TOPOLOGY_PARAMETERS_H
 
-#include <Soup_topology/internal/octree_parameters.h>
-#include <Soup_topology/internal/subdivision_parameters.h>
-
 #include <CGAL/Named_function_parameters.h>
 
+/// \cond SKIP_IN_MANUAL
+// Declares the tag `Soup_topology::internal_np::NAME` of type `TAG` and the two builders
+// `Soup_topology::parameters::NAME(value)` and `Soup_topology::parameters::NAME(value, np)`. As
+// in CGAL, the builders store the value with the type it is given; the function that reads the
+// parameter converts it to the type it documents.
 #define SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(TAG, NAME)                                                   \
   namespace internal_np { enum TAG { NAME }; }                                                         \
   namespace parameters {                                                                               \
@@ -31,12 +32,21 @@
   NAME(const T& value, const CGAL::Named_function_parameters<T2, Tag2, Base2>& np)                     \
   { return CGAL::Named_function_parameters<T, internal_np::TAG, CGAL::Named_function_parameters<T2, Tag2, Base2>>(value, np); } \
   }
+/// \endcond
 
 namespace Soup_topology {
+
+// The list of the package's named parameters. The manual (`Soup_topology.txt`, section "Named
+// parameters") lists them with the functions that read them.
+
+// Welding and T-junctions (`snap_vertices()`, `split_t_junctions()`, `reconstruct_topology()`).
 
 /// the tolerance given as a fraction of the diagonal of the bounding box of the points
 /// (instead of CGAL's absolute `snapping_tolerance`); a `double`.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
+
+// Pipeline (`reconstruct_topology()`).
+
 /// whether `reconstruct_topology()` counts the pairs of triangles of its result that intersect
 /// (more than in a shared vertex or edge), in `Reconstruction_report::self_intersecting_pairs`
 /// (default `false`: the count costs a box intersection over all triangles).
@@ -45,9 +55,30 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(count_self_intersections_t, count_self_interse
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(maximum_number_of_rounds_t, maximum_number_of_rounds)
 /// whether `reconstruct_topology()` splits T-junctions (default `true`).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(split_t_junctions_t, do_split_t_junctions)
-/// how `orient_triangle_soup()` and `triangle_soup_to_face_graph()` orient closed patches, a
-/// `Soup_topology::Orientation_policy` (default `Orientation_policy::BOUND_VOLUME`).
+
+// Orientation (`orient_triangle_soup()`, `triangle_soup_to_face_graph()`).
+
+/// how closed patches are oriented, a `Soup_topology::Orientation_policy` (default
+/// `Orientation_policy::BOUND_VOLUME`).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(orientation_policy_t, orientation_policy)
+
+// Octree (`Octree`).
+
+/// the largest number of points of a leaf (a box holding more is split into 8), unless the
+/// maximum depth is reached; a `std::size_t`.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(bucket_capacity_t, bucket_capacity)
+/// the largest depth `n` of the octree: the integer addresses have `n` bits per axis
+/// (1 <= n <= 21); a `std::size_t`.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(maximum_depth_t, maximum_depth)
+/// the default strategy of `Octree::vertices_near_segment()`, a `Soup_topology::Segment_query_strategy`.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(segment_query_strategy_t, segment_query_strategy)
+
+// Loop subdivision (`loop_subdivision()`, `loop_limit_points()`, `loop_limit_tangents()`).
+
+/// the choice of `beta` of Loop's vertex rule, a `Soup_topology::Loop_beta` (default `Loop_beta::LOOP`).
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(loop_beta_t, loop_beta)
+/// an `Adjacency_tables*` that, if not null, receives the tables of the subdivided soup.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(output_adjacency_tables_t, output_adjacency_tables)
 
 namespace parameters {
 using CGAL::parameters::default_values;

@@ -7,8 +7,9 @@
 #define SOUP_TOPOLOGY_SOUP_STATISTICS_H
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/tolerance.h>
 
-#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
 
 #include <cstddef>
 #include <vector>
@@ -32,15 +33,33 @@ struct Soup_statistics
 
 /// \ingroup PkgSoupTopologyRef
 /// \brief computes `Soup_statistics` of the soup whose tables are `tables` and points `points`.
-/// Collinearity is decided by the kernel of the point type (exact with Epick and Epeck).
+///
 /// Linear time in the size of the soup, however many triangles share an edge or a vertex: every
 /// count is one pass over the tables (see `Adjacency_tables`).
-template <class PointRange>
-Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tables& tables)
+/// \tparam PointRange a random-access container whose points are read through `point_map`
+/// \param points the points of the soup
+/// \param tables the adjacency tables of the triangles of the soup, over `points`
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map}
+///     \cgalParamDescription{a property map through which the points of `points` are read}
+///     \cgalParamType{a model of `ReadablePropertyMap` from the value type of `PointRange` to `Point_3`}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{its `Collinear_3` decides which triangles have zero area (exact with
+///     Epick and Epeck)}
+///     \cgalParamType{a model of `SoupTopologyTraits`} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tables& tables,
+                                   const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using Point = typename PointRange::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
-  typename Kernel::Collinear_3 collinear = Kernel().collinear_3_object();
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Geom_traits = typename NP_helper::Geom_traits;
+  const Geom_traits gt = NP_helper::get_geom_traits(np);
+  const typename NP_helper::Point_map pm = NP_helper::get_point_map(np);
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
   Soup_statistics s;
   s.vertices = points.size();
   s.triangles = tables.number_of_triangles();
@@ -51,7 +70,7 @@ Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tab
   s.components = tables.number_of_connected_components();
   s.closed = s.border_edges == 0;
   for(const Adjacency_tables::Triangle& t : tables.triangles())
-    if(collinear(points[t[0]], points[t[1]], points[t[2]])) ++s.zero_area_triangles;
+    if(collinear(get(pm, points[t[0]]), get(pm, points[t[1]]), get(pm, points[t[2]]))) ++s.zero_area_triangles;
   return s;
 }
 

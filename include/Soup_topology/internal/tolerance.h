@@ -112,10 +112,17 @@ struct Soup_np_helper
   using Geom_traits = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t,
                                                                          NamedParameters, Default_geom_traits>::type;
   using FT = typename Geom_traits::FT;
+  /// the point map of an algorithm that writes the points (`loop_subdivision()`).
+  using Writable_point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::type;
 
   static Point_map get_point_map(const NamedParameters& np)
   {
     return CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
+  }
+  static Writable_point_map get_writable_point_map(const NamedParameters& np)
+  {
+    return CGAL::parameters::choose_parameter<Writable_point_map>(
+      CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
   }
   static Geom_traits get_geom_traits(const NamedParameters& np)
   {
