@@ -135,6 +135,9 @@ Strip_conversion_report append_primitives(const IndexRange& indices,
 /// \tparam IndexRange a range of vertex indices (`std::vector<int>`, `std::vector<std::uint32_t>`, ...)
 /// \tparam TriangleRange a back-insertion sequence whose value type is a random-access range of 3
 ///         indices (`std::array<std::size_t,3>`, `std::vector<int>`, ...)
+/// \param indices the vertex indices of the strip
+/// \param triangles the triangles, to which the triangles of the strip are appended
+/// \return what was appended and dropped
 template <typename IndexRange, typename TriangleRange>
 Strip_conversion_report append_triangle_strip(const IndexRange& indices, TriangleRange& triangles)
 {
@@ -144,6 +147,10 @@ Strip_conversion_report append_triangle_strip(const IndexRange& indices, Triangl
 /// \ingroup PkgSoupTopologyIO
 /// same as above, with every occurrence of `restart_index` (OpenGL's primitive restart, e.g.
 /// `0xFFFFFFFF` or `-1`) ending the current strip and starting a new one.
+/// \param indices the vertex indices of the strips, separated by `restart_index`
+/// \param triangles the triangles, to which the triangles of the strips are appended
+/// \param restart_index the index that ends a strip (compared after conversion to the index type)
+/// \return what was appended and dropped
 template <typename IndexRange, typename TriangleRange, typename Index>
 Strip_conversion_report append_triangle_strip(const IndexRange& indices, TriangleRange& triangles,
                                               const Index& restart_index)
@@ -155,6 +162,11 @@ Strip_conversion_report append_triangle_strip(const IndexRange& indices, Triangl
 /// \ingroup PkgSoupTopologyIO
 /// appends to `triangles` the triangles of the triangle fan(s) `indices`: triangle `k` is
 /// `(v_0, v_{k+1}, v_{k+2})`. Triangles with a repeated index are dropped and counted.
+/// \tparam IndexRange as for `append_triangle_strip()`
+/// \tparam TriangleRange as for `append_triangle_strip()`
+/// \param indices the vertex indices of the fan, its center first
+/// \param triangles the triangles, to which the triangles of the fan are appended
+/// \return what was appended and dropped
 template <typename IndexRange, typename TriangleRange>
 Strip_conversion_report append_triangle_fan(const IndexRange& indices, TriangleRange& triangles)
 {
@@ -163,7 +175,11 @@ Strip_conversion_report append_triangle_fan(const IndexRange& indices, TriangleR
 
 /// \ingroup PkgSoupTopologyIO
 /// same as above, with every occurrence of `restart_index` ending the current fan and starting
-/// a new one (whose first vertex is the new centre).
+/// another one (whose first vertex is its center).
+/// \param indices the vertex indices of the fans, separated by `restart_index`
+/// \param triangles the triangles, to which the triangles of the fans are appended
+/// \param restart_index the index that ends a fan (compared after conversion to the index type)
+/// \return what was appended and dropped
 template <typename IndexRange, typename TriangleRange, typename Index>
 Strip_conversion_report append_triangle_fan(const IndexRange& indices, TriangleRange& triangles,
                                             const Index& restart_index)
@@ -175,6 +191,9 @@ Strip_conversion_report append_triangle_fan(const IndexRange& indices, TriangleR
 /// \ingroup PkgSoupTopologyIO
 /// appends the triangles of every strip of `strips` (a range of index ranges, one strip each,
 /// as `glMultiDrawElements` takes them).
+/// \param strips the strips, each a range of vertex indices
+/// \param triangles the triangles, to which the triangles of the strips are appended
+/// \return the sum of the reports of the strips
 template <typename StripRange, typename TriangleRange>
 Strip_conversion_report append_triangle_strips(const StripRange& strips, TriangleRange& triangles)
 {
@@ -186,6 +205,9 @@ Strip_conversion_report append_triangle_strips(const StripRange& strips, Triangl
 
 /// \ingroup PkgSoupTopologyIO
 /// appends the triangles of every fan of `fans` (a range of index ranges, one fan each).
+/// \param fans the fans, each a range of vertex indices, its center first
+/// \param triangles the triangles, to which the triangles of the fans are appended
+/// \return the sum of the reports of the fans
 template <typename FanRange, typename TriangleRange>
 Strip_conversion_report append_triangle_fans(const FanRange& fans, TriangleRange& triangles)
 {
