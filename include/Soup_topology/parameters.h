@@ -2,9 +2,9 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // The package's named parameters, all declared here by one macro. They chain with CGAL's: CGAL
-// already has `geom_traits`, `point_map`, `snapping_tolerance`, `visitor`,
-// `number_of_iterations` and `verbose`, which the package reuses; new tags exist only for what
-// CGAL lacks. Each builder has a one-argument form that starts a chain and a two-argument form
+// already has `geom_traits`, `point_map`, `vertex_point_map`, `snapping_tolerance`, `visitor`,
+// `number_of_iterations` and `stream_precision`, which the package reuses; new tags exist only
+// for what CGAL lacks. Each builder has a one-argument form that starts a chain and a two-argument form
 // that appends to an existing chain:
 //   Soup_topology::parameters::relative_tolerance(1e-6, CGAL::parameters::geom_traits(K()))
 // CGAL's own parameters chain as members (`.geom_traits(k).visitor(v)`), but CGAL 5.5 fixes the
