@@ -44,6 +44,11 @@ namespace Soup_topology {
 /// the tolerance given as a fraction of the diagonal of the bounding box of the points
 /// (instead of CGAL's absolute `snapping_tolerance`); a `double`.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
+/// the vertices that `snap_vertices()` may not move (they may still receive welds): a
+/// `const std::vector<char>*`, nonzero for a fixed vertex, ignored unless it has one entry per
+/// point. `reconstruct_topology()` fixes with it the vertices that received welds in earlier
+/// rounds; it is not meant for users and not listed in the manual.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(fixed_vertices_t, fixed_vertices)
 
 // Pipeline (`reconstruct_topology()`).
 
