@@ -8,6 +8,7 @@
 
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Octree_morton.h>
+#include <Soup_topology/internal/octree_distance_filters.h>
 #include <Soup_topology/internal/octree_parameters.h>
 
 #include <CGAL/Iterator_range.h>
@@ -68,7 +69,9 @@ enum class Segment_query_strategy
 /// LARGER` (`radius*radius` evaluated in `FT`). With `Exact_predicates_inexact_constructions_kernel`
 /// and `Exact_predicates_exact_constructions_kernel` these answers are exact for the input
 /// coordinates. The box pruning and a per-point prefilter run in `double` with margins larger than
-/// every rounding error involved, so they may keep a candidate too many but never lose one.
+/// every rounding error involved, so they may keep a candidate too many but never lose one; with
+/// double coordinates, a point whose distance computed in `double` is below the radius by more
+/// than every rounding error is accepted without the kernel (it would say the same).
 ///
 /// \tparam GeomTraits a CGAL Kernel (`Point_3`, `Segment_3`, `FT`, `Compare_squared_distance_3`,
 ///         `Compare_distance_3`, `Equal_3`, `Construct_segment_3`)
@@ -346,10 +349,13 @@ public:
         return index_range_meets(f, ilo, ihi);
       return box_meets_segment(f, s, bound);
     };
+    // with double coordinates, a point clearly within the radius is accepted in double
+    const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
     traverse(box_may_meet, [&](const Frame&, const Node& nd) {
       for(std::uint32_t k = nd.begin; k != nd.end; ++k)
         if(point_segment_squared_distance(k, s) <= bound2 &&
-           compare_sq(points_[k], seg, r2) != CGAL::LARGER)
+           ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
+            compare_sq(points_[k], seg, r2) != CGAL::LARGER))
           found.push_back(ids_[k]);
     });
     std::sort(found.begin(), found.end());

@@ -7,11 +7,14 @@
 #ifndef SOUP_TOPOLOGY_INTERNAL_SPLIT_PREDICATES_H
 #define SOUP_TOPOLOGY_INTERNAL_SPLIT_PREDICATES_H
 
+#include <Soup_topology/internal/octree_distance_filters.h>
+
 #include <CGAL/Cartesian_converter.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/number_utils.h>
 
+#include <array>
 #include <type_traits>
 
 namespace Soup_topology {
@@ -45,6 +48,23 @@ bool surely_within(const Point& p, const Point& q, double bound2)
     return bound2 > 1e-250 && dx * dx + dy * dy + dz * dz < bound2 * (1 - 1e-12);
   } else {
     (void)p; (void)q; (void)bound2;
+    return false;
+  }
+}
+
+/// `true` if the squared distance of `p` and the closed segment `[a,b]`, computed in double with
+/// an error bound, is clearly below `bound2` (a squared distance in double): the exact comparison
+/// then says so too. For double coordinates only (otherwise `false`: ask the exact predicate).
+template <class Point>
+bool surely_within_segment(const Point& p, const Point& a, const Point& b, double bound2)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    return surely_within_segment(std::array<double, 3>{{p.x(), p.y(), p.z()}},
+                                 std::array<double, 3>{{a.x(), a.y(), a.z()}},
+                                 std::array<double, 3>{{b.x(), b.y(), b.z()}}, bound2);
+  } else {
+    (void)p; (void)a; (void)b; (void)bound2;
     return false;
   }
 }

@@ -92,12 +92,14 @@ private:
 
   const Point& point(size_type v) const { return points_[v]; }
 
-  // A vertex clearly within the tolerance of an end point (in double, for double coordinates) is
-  // within it of the segment: the exact predicate is asked only when that does not decide (it is
-  // slow on the tiny segments of a dense cluster).
+  // A vertex clearly within the tolerance of an end point or of the segment (in double, for double
+  // coordinates) is within it of the segment: the exact predicate is asked only when that does not
+  // decide (it is slow on the tiny segments of a dense cluster and on collinear points).
   bool near_segment(size_type v, size_type a, size_type b) const
   {
-    if(surely_within(point(v), point(a), eps2d_) || surely_within(point(v), point(b), eps2d_)) return true;
+    if(surely_within(point(v), point(a), eps2d_) || surely_within(point(v), point(b), eps2d_) ||
+       surely_within_segment(point(v), point(a), point(b), eps2d_))
+      return true;
     return compare_sq_(point(v), segment_(point(a), point(b)), eps2_) != CGAL::LARGER;
   }
   bool near_vertex(size_type v, size_type a) const
