@@ -3,6 +3,7 @@
 //
 // Tests of <Soup_topology/Octree.h>: cross-checks against brute force, properties, bad input.
 
+#include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Octree.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -571,14 +572,14 @@ TEST(Octree, RejectsNonFiniteCoordinates)
     ST::Octree<Epick> tree(pts);
     FAIL() << "no exception";
   }
-  catch(const std::invalid_argument& e)
+  catch(const ST::Invalid_input& e)
   {
     EXPECT_NE(std::string(e.what()).find("point 2"), std::string::npos) << e.what();
   }
   pts[2] = Epick::Point_3(std::numeric_limits<double>::infinity(), 0, 0);
-  EXPECT_THROW(ST::Octree<Epick>{pts}, std::invalid_argument);
+  EXPECT_THROW(ST::Octree<Epick>{pts}, ST::Invalid_input);
   std::vector<SC::Point_3> spts = {SC::Point_3(0, 0, -std::numeric_limits<double>::infinity())};
-  EXPECT_THROW(ST::Octree<SC>{spts}, std::invalid_argument);
+  EXPECT_THROW(ST::Octree<SC>{spts}, ST::Invalid_input);
 }
 
 TEST(Octree, RejectsBadRadiusAndParameters)
@@ -587,17 +588,20 @@ TEST(Octree, RejectsBadRadiusAndParameters)
   const ST::Octree<Epick> tree(pts);
   std::vector<std::size_t> out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(tree.nearest_vertex(pts[0], -1.0), std::invalid_argument);
-  EXPECT_THROW(tree.nearest_vertex(pts[0], nan), std::invalid_argument);
+  EXPECT_THROW(tree.nearest_vertex(pts[0], -1.0), ST::Invalid_input);
+  EXPECT_THROW(tree.nearest_vertex(pts[0], nan), ST::Invalid_input);
   EXPECT_THROW(tree.vertices_near_point(pts[0], -1e-300, std::back_inserter(out)),
-               std::invalid_argument);
+               ST::Invalid_input);
   EXPECT_THROW(tree.vertices_near_segment(pts[0], pts[1], nan, std::back_inserter(out)),
-               std::invalid_argument);
-  EXPECT_THROW(ST::Octree<Epick>(pts, ST::parameters::bucket_capacity(0)), std::invalid_argument);
-  EXPECT_THROW(ST::Octree<Epick>(pts, ST::parameters::maximum_depth(22)), std::invalid_argument);
+               ST::Invalid_input);
+  EXPECT_THROW(ST::Octree<Epick>(pts, ST::parameters::bucket_capacity(0)), ST::Invalid_input);
+  EXPECT_THROW(ST::Octree<Epick>(pts, ST::parameters::maximum_depth(22)), ST::Invalid_input);
   const std::vector<Epeck::Point_3> epts = to_points<Epeck>(uniform_points(10, 82));
   const ST::Octree<Epeck> etree(epts);
-  EXPECT_THROW(etree.nearest_vertex(epts[0], Epeck::FT(-1) / 3), std::invalid_argument);
+  EXPECT_THROW(etree.nearest_vertex(epts[0], Epeck::FT(-1) / 3), ST::Invalid_input);
+  EXPECT_THROW(tree.address(pts.size()), ST::Invalid_input);
+  // the package's exception is a std::invalid_argument
+  EXPECT_THROW(tree.nearest_vertex(pts[0], -1.0), std::invalid_argument);
 }
 
 TEST(Octree, NamedParametersAndPointMap)

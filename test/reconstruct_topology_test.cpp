@@ -769,3 +769,80 @@ TEST(ReconstructTopology, Issue21RelativeToleranceOnHugeCoordinates)
 }
 
 } // namespace issue20
+
+namespace split_filters {
+
+namespace ST = Soup_topology;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+
+// A triangle (0, 1, 2) whose edge [0, 1] has `n` vertices of a strip of triangles near it, moved
+// off the edge by up to `offset` (some within the tolerance, some not).
+void noisy_t_junction_strip(std::size_t n, double offset, std::vector<Point>& points, std::vector<Triangle>& triangles)
+{
+  std::mt19937 gen(2026);
+  std::uniform_real_distribution<double> off(-offset, offset);
+  points = {Point(0, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0)};
+  triangles = {{0, 1, 2}};
+  std::vector<std::size_t> chain = {0};
+  for(std::size_t k = 1; k <= n; ++k) {
+    chain.push_back(points.size());
+    points.push_back(Point(double(k) / double(n + 1), off(gen), off(gen)));
+  }
+  chain.push_back(1);
+  const std::size_t below = points.size();
+  for(std::size_t k = 0; k <= n + 1; ++k) points.push_back(Point(double(k) / double(n + 1), -0.01, 0));
+  for(std::size_t k = 0; k + 1 < chain.size(); ++k) {
+    triangles.push_back({chain[k + 1], chain[k], below + k});
+    triangles.push_back({chain[k + 1], below + k, below + k + 1});
+  }
+}
+
+// The double-precision acceptance of "near the segment" (Octree queries and the T-junction
+// decisions) accepts only what the exact predicate accepts: with Epick (filtered) and Epeck
+// (no double filter), the same triangles are split.
+TEST(SplitTJunctions, DoubleFilterKeepsTheExactDecisions)
+{
+  const double eps = 1e-6;
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  noisy_t_junction_strip(1000, 1.5 * eps, points, triangles);
+  std::vector<Epeck::Point_3> exact_points;
+  for(const Point& p : points) exact_points.emplace_back(p.x(), p.y(), p.z());
+  std::vector<Triangle> inexact_result = triangles, exact_result = triangles;
+  const ST::Split_report r1 = ST::split_t_junctions(points, inexact_result, CGAL::parameters::snapping_tolerance(eps));
+  const ST::Split_report r2 =
+    ST::split_t_junctions(exact_points, exact_result, CGAL::parameters::snapping_tolerance(Epeck::FT(eps)));
+  EXPECT_GT(r1.t_junctions, 0u);
+  EXPECT_LT(r1.t_junctions, 1000u);
+  EXPECT_EQ(r1.t_junctions, r2.t_junctions);
+  EXPECT_EQ(r1.refused_flip + r1.refused_degenerate, r2.refused_flip + r2.refused_degenerate);
+  EXPECT_EQ(inexact_result, exact_result);
+}
+
+TEST(SplitTJunctions, SegmentFilterNeverAcceptsAFarPoint)
+{
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::size_t accepted = 0;
+  for(int i = 0; i < 20000; ++i) {
+    const double scale = std::pow(10.0, double(i % 13) - 6);
+    const std::array<double, 3> a{{unit(gen) * scale, unit(gen) * scale, unit(gen) * scale}};
+    const std::array<double, 3> b = (i % 5 == 0) ? a : std::array<double, 3>{{unit(gen) * scale, unit(gen) * scale, unit(gen) * scale}};
+    const double t = (i % 3 == 0) ? 0.5 * (unit(gen) + 1) : 1.5 * unit(gen);
+    const double eps = scale * 1e-3 * (1 + unit(gen));
+    std::array<double, 3> p;
+    for(std::size_t k = 0; k < 3; ++k) p[k] = a[k] + t * (b[k] - a[k]) + eps * 0.6 * unit(gen);
+    const double eps2 = eps * eps;
+    if(!ST::internal::surely_within_segment(p, a, b, eps2)) continue;
+    ++accepted;
+    const Epeck::Point_3 ep(p[0], p[1], p[2]), ea(a[0], a[1], a[2]), eb(b[0], b[1], b[2]);
+    const Epeck::FT d2 = (i % 5 == 0) ? CGAL::squared_distance(ep, ea) : CGAL::squared_distance(ep, Epeck::Segment_3(ea, eb));
+    ASSERT_LT(d2, Epeck::FT(eps2)) << i;
+  }
+  EXPECT_GT(accepted, 1000u);
+}
+
+} // namespace split_filters

@@ -6,7 +6,9 @@
 #ifndef SOUP_TOPOLOGY_OCTREE_H
 #define SOUP_TOPOLOGY_OCTREE_H
 
+#include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Octree_morton.h>
+#include <Soup_topology/internal/octree_distance_filters.h>
 #include <Soup_topology/internal/octree_parameters.h>
 
 #include <CGAL/Iterator_range.h>
@@ -67,13 +69,16 @@ enum class Segment_query_strategy
 /// LARGER` (`radius*radius` evaluated in `FT`). With `Exact_predicates_inexact_constructions_kernel`
 /// and `Exact_predicates_exact_constructions_kernel` these answers are exact for the input
 /// coordinates. The box pruning and a per-point prefilter run in `double` with margins larger than
-/// every rounding error involved, so they may keep a candidate too many but never lose one.
+/// every rounding error involved, so they may keep a candidate too many but never lose one; with
+/// double coordinates, a point whose distance computed in `double` is below the radius by more
+/// than every rounding error is accepted without the kernel (it would say the same).
 ///
 /// \tparam GeomTraits a CGAL Kernel (`Point_3`, `Segment_3`, `FT`, `Compare_squared_distance_3`,
 ///         `Compare_distance_3`, `Equal_3`, `Construct_segment_3`)
 /// \tparam PointMap a model of `ReadablePropertyMap` from the value type of the range to `Point_3`
 ///
-/// The class is a model of the concept `SpatialIndex`.
+/// `snap_vertices()` and `split_t_junctions()` use this class directly; it is not a template
+/// parameter of theirs.
 template <typename GeomTraits,
           typename PointMap = CGAL::Identity_property_map<typename GeomTraits::Point_3>>
 class Octree
@@ -100,6 +105,11 @@ public:
   /// @{
 
   /// builds the tree over `points` with the default parameters.
+  /// \tparam PointRange a random-access range whose values `point_map` maps to `Point_3`
+  /// \param points the points to index (copied: the range may be discarded afterwards)
+  /// \param point_map the map from the values of `points` to `Point_3`
+  /// \param gt the kernel that takes every decision
+  /// \throw Invalid_input if a coordinate is not finite (the message names the point)
   template <typename PointRange>
   explicit Octree(const PointRange& points, PointMap point_map = PointMap(),
                   const Geom_traits& gt = Geom_traits())
@@ -110,19 +120,29 @@ public:
 
   /// builds the tree over `points`.
   ///
+  /// \tparam PointRange a random-access range whose values `point_map` maps to `Point_3`
+  /// \param points the points to index (copied: the range may be discarded afterwards)
+  /// \param np a sequence of named parameters among the ones listed below
+  ///
   /// \cgalNamedParamsBegin
-  ///   \cgalParamNBegin{bucket_capacity} \cgalParamType{`std::size_t`, at least 1}
-  ///     \cgalParamDefault{16} \cgalParamNEnd
-  ///   \cgalParamNBegin{maximum_depth} \cgalParamType{`std::size_t`, in [1,21]}
+  ///   \cgalParamNBegin{bucket_capacity} \cgalParamDescription{the largest number of points of a
+  ///     leaf, unless they share one address or the maximum depth is reached}
+  ///     \cgalParamType{`std::size_t`, at least 1} \cgalParamDefault{16} \cgalParamNEnd
+  ///   \cgalParamNBegin{maximum_depth} \cgalParamDescription{the depth of the deepest leaf, and the
+  ///     number of bits per axis of an address} \cgalParamType{`std::size_t`, in [1,21]}
   ///     \cgalParamDefault{21} \cgalParamNEnd
-  ///   \cgalParamNBegin{segment_query_strategy} \cgalParamType{`Segment_query_strategy`}
+  ///   \cgalParamNBegin{segment_query_strategy} \cgalParamDescription{the boxes tested by
+  ///     `vertices_near_segment()` when no strategy is passed to it}
+  ///     \cgalParamType{`Segment_query_strategy`}
   ///     \cgalParamDefault{`Segment_query_strategy::INDEX_SPACE_BOX` (the faster on short segments)} \cgalParamNEnd
-  ///   \cgalParamNBegin{point_map} \cgalParamType{`PointMap`} \cgalParamDefault{`PointMap()`} \cgalParamNEnd
-  ///   \cgalParamNBegin{geom_traits} \cgalParamType{`GeomTraits`} \cgalParamDefault{`GeomTraits()`} \cgalParamNEnd
+  ///   \cgalParamNBegin{point_map} \cgalParamDescription{the map from the values of `points` to
+  ///     `Point_3`} \cgalParamType{`PointMap`} \cgalParamDefault{`PointMap()`} \cgalParamNEnd
+  ///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the kernel that takes every decision}
+  ///     \cgalParamType{`GeomTraits`} \cgalParamDefault{`GeomTraits()`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   ///
-  /// \throw std::invalid_argument if a coordinate is not finite (the message names the point) or
-  ///        a parameter is out of range
+  /// \throw Invalid_input if a coordinate is not finite (the message names the point) or a
+  ///        parameter is out of range
   template <typename PointRange, typename T, typename Tag, typename Base>
   Octree(const PointRange& points, const CGAL::Named_function_parameters<T, Tag, Base>& np)
     : gt_(CGAL::parameters::choose_parameter(
@@ -144,11 +164,13 @@ public:
   /// @}
 
   /// \name Queries
-  /// Each query throws `std::invalid_argument` if `radius` is negative or NaN.
+  /// Each query throws `Invalid_input` if `radius` is negative or NaN.
   /// @{
 
   /// returns the index of the point closest to `q` among those within `radius` of `q`
   /// (the smallest index among equally close points), or nothing.
+  /// \param q the query point
+  /// \param radius the largest distance from `q`
   std::optional<std::size_t> nearest_vertex(const Point_3& q, const FT& radius) const
   {
     check_radius(radius);
@@ -164,74 +186,47 @@ public:
     typename Geom_traits::Compare_distance_3 compare_dist = gt_.compare_distance_3_object();
 
     std::uint32_t best = npos;  // sorted position of the best point so far
-    Stack stack;
-    stack.push_back(Frame{0, {{0, 0, 0}}});
-    while(!stack.empty())
-    {
-      const Frame f = stack.back();
-      stack.pop_back();
-      const Node& nd = nodes_[f.node];
-      if(box_point_squared_distance(f, qa.c) > bound2)
-        continue;
-      if(nd.first_child == 0)
+    const auto near_box = [&](const Frame& f, double& d2) {
+      d2 = box_point_squared_distance(f, qa.c);
+      return !(d2 > bound2);
+    };
+    traverse<Child_order::NEAREST_FIRST>(near_box, [&](const Frame&, const Node& nd) {
+      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
       {
-        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-        {
-          const double d2 = point_squared_distance(k, qa.c);
-          if(d2 > bound2)
-            continue;
-          bool better;
-          if(best == npos)
-            better = compare_sq(q, points_[k], r2) != CGAL::LARGER;
-          else
-          {
-            const CGAL::Comparison_result c = compare_dist(q, points_[k], points_[best]);
-            better = (c == CGAL::SMALLER) || (c == CGAL::EQUAL && ids_[k] < ids_[best]);
-          }
-          if(better)
-          {
-            best = k;
-            const double b = (std::sqrt(d2) + 2 * (margin_ + qa.err)) * (1 + 1e-12);
-            if(b < bound)
-            {
-              bound = b;
-              bound2 = b * b;
-            }
-          }
-        }
-        continue;
-      }
-      // visit the children nearest first: push them farthest first (insertion sort, <= 8)
-      double dist[8];
-      Frame child[8];
-      int count = 0;
-      for(int i = 0; i < 8; ++i)
-      {
-        const Frame c = child_frame(f, nd, i);
-        const Node& cn = nodes_[c.node];
-        if(cn.begin == cn.end)
-          continue;
-        const double d2 = box_point_squared_distance(c, qa.c);
+        const double d2 = point_squared_distance(k, qa.c);
         if(d2 > bound2)
           continue;
-        int j = count++;
-        for(; j > 0 && dist[j - 1] < d2; --j)
+        bool better;
+        if(best == npos)
+          better = compare_sq(q, points_[k], r2) != CGAL::LARGER;
+        else
         {
-          dist[j] = dist[j - 1];
-          child[j] = child[j - 1];
+          const CGAL::Comparison_result c = compare_dist(q, points_[k], points_[best]);
+          better = (c == CGAL::SMALLER) || (c == CGAL::EQUAL && ids_[k] < ids_[best]);
         }
-        dist[j] = d2;
-        child[j] = c;
+        if(better)
+        {
+          best = k;
+          const double b = (std::sqrt(d2) + 2 * (margin_ + qa.err)) * (1 + 1e-12);
+          if(b < bound)
+          {
+            bound = b;
+            bound2 = b * b;
+          }
+        }
       }
-      for(int i = 0; i < count; ++i)
-        stack.push_back(child[i]);
-    }
+    });
     if(best == npos)
       return std::nullopt;
     return std::optional<std::size_t>(ids_[best]);
   }
 
   /// writes to `out`, in increasing order, the index of every point within `radius` of `q`.
+  /// \tparam OutputIterator an output iterator accepting `std::size_t`
+  /// \param q the query point
+  /// \param radius the largest distance from `q`
+  /// \param out where the indices are written
+  /// \return `out` past the last index written
   template <typename OutputIterator>
   OutputIterator vertices_near_point(const Point_3& q, const FT& radius, OutputIterator out) const
   {
@@ -244,23 +239,9 @@ public:
     const double bound2 = bound * bound;
 
     std::vector<std::size_t> found;
-    Stack stack;
-    stack.push_back(Frame{0, {{0, 0, 0}}});
-    while(!stack.empty())
-    {
-      const Frame f = stack.back();
-      stack.pop_back();
-      const Node& nd = nodes_[f.node];
-      if(nd.begin == nd.end || box_point_squared_distance(f, qa.c) > bound2)
-        continue;
-      if(nd.first_child == 0)
-      {
-        scan_leaf(nd, q, qa.c, r2, bound2, found);
-        continue;
-      }
-      for(int i = 7; i >= 0; --i)
-        stack.push_back(child_frame(f, nd, i));
-    }
+    traverse(
+      [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
+      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -271,6 +252,9 @@ public:
   /// needs). A point whose ball lies well inside its leaf's box (the common case when `radius` is
   /// small against the leaves) is answered from its leaf alone, without a descent from the root;
   /// the others go through `vertices_near_point()`. The decisions are the same as there.
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \param radius the largest distance between neighbors
+  /// \param callback called once per point
   template <typename Callback>
   void for_each_neighborhood(const FT& radius, Callback callback) const
   {
@@ -279,21 +263,7 @@ public:
       return;
     const FT r2 = radius * radius;
     std::vector<std::size_t> near;
-    Stack stack;
-    stack.push_back(Frame{0, {{0, 0, 0}}});
-    while(!stack.empty())
-    {
-      const Frame f = stack.back();
-      stack.pop_back();
-      const Node& nd = nodes_[f.node];
-      if(nd.begin == nd.end)
-        continue;
-      if(nd.first_child != 0)
-      {
-        for(int i = 7; i >= 0; --i)
-          stack.push_back(child_frame(f, nd, i));
-        continue;
-      }
+    traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
       const double cs = cell_size_[nd.level];
       for(std::uint32_t k = nd.begin; k != nd.end; ++k)
       {
@@ -315,11 +285,18 @@ public:
           vertices_near_point(points_[k], radius, std::back_inserter(near));
         callback(std::size_t(ids_[k]), static_cast<const std::vector<std::size_t>&>(near));
       }
-    }
+    });
   }
 
   /// writes to `out`, in increasing order, the index of every point within `radius` of the
   /// closed segment `[a,b]`, choosing the candidate boxes with `strategy`.
+  /// \tparam OutputIterator an output iterator accepting `std::size_t`
+  /// \param a the source of the segment
+  /// \param b the target of the segment (`a == b` is allowed)
+  /// \param radius the largest distance from the segment
+  /// \param out where the indices are written
+  /// \param strategy how the candidate boxes are chosen (the answer is the same)
+  /// \return `out` past the last index written
   template <typename OutputIterator>
   OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
                                        OutputIterator out, Segment_query_strategy strategy) const
@@ -354,7 +331,7 @@ public:
       gt_.compare_squared_distance_3_object();
 
     // index-space box of the segment grown by the bound (equations (22)-(24))
-    std::array<std::uint32_t, 3> ilo{}, ihi{};
+    Address ilo{}, ihi{};
     if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
     {
       for(std::size_t i = 0; i < 3; ++i)
@@ -367,42 +344,20 @@ public:
     }
 
     std::vector<std::size_t> found;
-    Stack stack;
-    stack.push_back(Frame{0, {{0, 0, 0}}});
-    while(!stack.empty())
-    {
-      const Frame f = stack.back();
-      stack.pop_back();
-      const Node& nd = nodes_[f.node];
-      if(nd.begin == nd.end)
-        continue;
+    const auto box_may_meet = [&](const Frame& f, double&) {
       if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
-      {
-        // equations (26)-(27): the box's index range must meet [ilo, ihi] on every axis
-        const unsigned shift = depth_ - nd.level;
-        bool meets = true;
-        for(std::size_t i = 0; i < 3 && meets; ++i)
-        {
-          const std::uint64_t lo = std::uint64_t(f.c[i]) << shift;
-          const std::uint64_t hi = ((std::uint64_t(f.c[i]) + 1) << shift) - 1;
-          meets = lo <= ihi[i] && ilo[i] <= hi;
-        }
-        if(!meets)
-          continue;
-      }
-      else if(!box_meets_segment(f, s, bound))
-        continue;
-      if(nd.first_child == 0)
-      {
-        for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-          if(point_segment_squared_distance(k, s) <= bound2 &&
-             compare_sq(points_[k], seg, r2) != CGAL::LARGER)
-            found.push_back(ids_[k]);
-        continue;
-      }
-      for(int i = 7; i >= 0; --i)
-        stack.push_back(child_frame(f, nd, i));
-    }
+        return index_range_meets(f, ilo, ihi);
+      return box_meets_segment(f, s, bound);
+    };
+    // with double coordinates, a point clearly within the radius is accepted in double
+    const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
+    traverse(box_may_meet, [&](const Frame&, const Node& nd) {
+      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+        if(point_segment_squared_distance(k, s) <= bound2 &&
+           ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
+            compare_sq(points_[k], seg, r2) != CGAL::LARGER))
+          found.push_back(ids_[k]);
+    });
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -410,6 +365,10 @@ public:
   /// same as above with the strategy chosen at construction
   /// (`Segment_query_strategy::INDEX_SPACE_BOX` by default: the faster one for the short segments
   /// of snapping, see the manual).
+  /// \param a the source of the segment
+  /// \param b the target of the segment
+  /// \param radius the largest distance from the segment
+  /// \param out where the indices are written
   template <typename OutputIterator>
   OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
                                        OutputIterator out) const
@@ -424,16 +383,21 @@ public:
 
   /// the number of points
   std::size_t size() const { return ids_.size(); }
+  /// whether the tree holds no point
   bool empty() const { return ids_.empty(); }
   /// the maximum depth `n`: addresses have `n` bits per axis
   std::size_t maximum_depth() const { return depth_; }
+  /// the largest number of points of a leaf (unless they share an address or the leaf is at the maximum depth)
   std::size_t bucket_capacity() const { return capacity_; }
+  /// the strategy of `vertices_near_segment()` when none is passed
   Segment_query_strategy segment_query_strategy() const { return strategy_; }
   /// the number of nodes (leaves and inner nodes, empty children included)
   std::size_t number_of_nodes() const { return nodes_.size(); }
 
   /// the integer address of point `i`: its coordinates normalised to the workspace cube,
   /// scaled by `2^n` and rounded down (the "address embedded in the coordinate")
+  /// \param i the index of a point in the range given at construction
+  /// \throw Invalid_input if `i` is out of range
   Address address(std::size_t i) const
   {
     Address r;
@@ -442,9 +406,11 @@ public:
   }
 
   /// the Morton code of point `i` (the interleaved bits of its address, `3n` bits)
+  /// \param i the index of a point in the range given at construction
   std::uint64_t morton_code(std::size_t i) const { return code_of(coords(position(i))); }
 
   /// the leaf holding point `i`, found by following the bits of its address from the root
+  /// \param i the index of a point in the range given at construction
   Node_index leaf(std::size_t i) const
   {
     const std::uint64_t code = morton_code(i);
@@ -457,12 +423,18 @@ public:
     return n;
   }
 
+  /// whether node `n` has no children
+  /// \param n a node
   bool is_leaf(Node_index n) const { return nodes_[n].first_child == 0; }
   /// the depth of node `n` (the root has depth 0)
+  /// \param n a node
   std::size_t depth(Node_index n) const { return nodes_[n].level; }
   /// the `i`-th child of the inner node `n`, `i` the octant `4*x + 2*y + z` (bits of the address)
+  /// \param n an inner node
+  /// \param i the octant, in [0,8)
   Node_index child(Node_index n, int i) const { return nodes_[n].first_child + Node_index(i); }
   /// the indices of the points inside node `n`, in Morton order
+  /// \param n a node
   Point_index_range points(Node_index n) const
   {
     return Point_index_range(ids_.data() + nodes_[n].begin, ids_.data() + nodes_[n].end);
@@ -470,6 +442,7 @@ public:
 
   /// the workspace cube: minimal corner and side length
   std::array<double, 3> workspace_origin() const { return origin_; }
+  /// the side length of the workspace cube
   double workspace_side() const { return side_; }
 
   /// @}
@@ -511,27 +484,126 @@ private:
   static constexpr std::uint32_t npos = std::numeric_limits<std::uint32_t>::max();
   static constexpr bool double_coordinates = std::is_same<FT, double>::value;
 
+  enum class Child_order { OCTANT, NEAREST_FIRST };
+
+  // The depth-first traversal of every query. A node is entered if it holds points and
+  // `box_test(frame, key)` returns true; `leaf_action(frame, node)` is called on the leaves
+  // entered. The children of an inner node are visited in octant order, or, with NEAREST_FIRST,
+  // those passing `box_test` when pushed in increasing `key` (they are tested again when popped:
+  // the test may have tightened meanwhile).
+  template <Child_order order = Child_order::OCTANT, typename Box_test, typename Leaf_action>
+  void traverse(Box_test box_test, Leaf_action leaf_action) const
+  {
+    Stack stack;
+    stack.push_back(Frame{0, {{0, 0, 0}}});
+    while(!stack.empty())
+    {
+      const Frame f = stack.back();
+      stack.pop_back();
+      const Node& nd = nodes_[f.node];
+      double key = 0;
+      if(nd.begin == nd.end || !box_test(f, key))
+        continue;
+      if(nd.first_child == 0)
+        leaf_action(f, nd);
+      else if constexpr(order == Child_order::NEAREST_FIRST)
+        push_children_nearest_first(f, nd, box_test, stack);
+      else
+        for(int i = 7; i >= 0; --i)
+          stack.push_back(child_frame(f, nd, i));
+    }
+  }
+
+  // pushes the non-empty children of `nd` that pass `box_test`, farthest first (insertion sort
+  // on their keys, at most 8), so that the nearest is visited first
+  template <typename Box_test>
+  void push_children_nearest_first(const Frame& f, const Node& nd, Box_test& box_test, Stack& stack) const
+  {
+    double key[8];
+    Frame child[8];
+    int count = 0;
+    for(int i = 0; i < 8; ++i)
+    {
+      const Frame c = child_frame(f, nd, i);
+      const Node& cn = nodes_[c.node];
+      double k = 0;
+      if(cn.begin == cn.end || !box_test(c, k))
+        continue;
+      int j = count++;
+      for(; j > 0 && key[j - 1] < k; --j)
+      {
+        key[j] = key[j - 1];
+        child[j] = child[j - 1];
+      }
+      key[j] = k;
+      child[j] = c;
+    }
+    for(int i = 0; i < count; ++i)
+      stack.push_back(child[i]);
+  }
+
+  // does the index range of the box of `f` meet [ilo, ihi] on every axis (equations (26)-(27))?
+  bool index_range_meets(const Frame& f, const Address& ilo, const Address& ihi) const
+  {
+    const unsigned shift = depth_ - nodes_[f.node].level;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      const std::uint64_t lo = std::uint64_t(f.c[i]) << shift;
+      const std::uint64_t hi = ((std::uint64_t(f.c[i]) + 1) << shift) - 1;
+      if(!(lo <= ihi[i] && ilo[i] <= hi))
+        return false;
+    }
+    return true;
+  }
+
+  struct Key
+  {
+    std::uint64_t code;
+    std::uint32_t id;
+  };
+
+  // the bounding box of the approximate coordinates and the largest error of the approximation
+  struct Approximate_box
+  {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    double max_abs = 0, err = 0;
+  };
+
   template <typename PointRange>
   void build(const PointRange& range, const PointMap& pm, std::size_t capacity, std::size_t depth)
   {
-    if(capacity < 1)
-      throw std::invalid_argument("Soup_topology::Octree: the bucket capacity must be at least 1");
-    if(depth < 1 || depth > largest_maximum_depth)
-      throw std::invalid_argument("Soup_topology::Octree: the maximum depth must be in [1, 21]");
+    check_build_parameters(capacity, depth);
     capacity_ = capacity;
     depth_ = static_cast<unsigned>(depth);
-
-    const auto first = std::begin(range);
-    const std::size_t n = static_cast<std::size_t>(std::distance(first, std::end(range)));
+    const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(range), std::end(range)));
     if(n >= std::size_t(npos))
       throw std::length_error("Soup_topology::Octree: too many points (at most 2^32 - 2)");
+    std::vector<std::array<double, 3>> approx; // kept only for a non-double kernel
+    const Approximate_box box = approximate_points(range, pm, n, approx);
+    set_workspace(box);
+    std::vector<Key> keys = sorted_keys(range, pm, n, approx);
+    gather_points(range, pm, keys, approx);
+    build_nodes(keys);
+  }
 
-    // 1. approximate coordinates (kept only for a non-double kernel), checked, and their box
-    std::vector<std::array<double, 3>> approx;
+  static void check_build_parameters(std::size_t capacity, std::size_t depth)
+  {
+    if(capacity < 1)
+      throw Invalid_input("Soup_topology::Octree: the bucket capacity must be at least 1");
+    if(depth < 1 || depth > largest_maximum_depth)
+      throw Invalid_input("Soup_topology::Octree: the maximum depth must be in [1, 21]");
+  }
+
+  // step 1: approximate coordinates (stored in `approx` only for a non-double kernel), checked,
+  // and their box
+  template <typename PointRange>
+  Approximate_box approximate_points(const PointRange& range, const PointMap& pm, std::size_t n,
+                                     std::vector<std::array<double, 3>>& approx) const
+  {
+    const auto first = std::begin(range);
     if(!double_coordinates)
       approx.resize(n);
-    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    double max_abs = 0, err = 0;
+    Approximate_box box;
     for(std::size_t i = 0; i < n; ++i)
     {
       const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
@@ -540,26 +612,30 @@ private:
       for(std::size_t k = 0; k < 3; ++k)
       {
         if(!std::isfinite(iv[k].first) || !std::isfinite(iv[k].second))
-          throw std::invalid_argument("Soup_topology::Octree: point " + std::to_string(i) +
-                                      " has a non-finite coordinate");
+          throw Invalid_input("Soup_topology::Octree: point " + std::to_string(i) +
+                              " has a non-finite coordinate");
         const double c = iv[k].first == iv[k].second ? iv[k].first
                                                      : 0.5 * iv[k].first + 0.5 * iv[k].second;
         if(!double_coordinates)
         {
           approx[i][k] = c;
-          err = std::max(err, iv[k].second - iv[k].first);
+          box.err = std::max(box.err, iv[k].second - iv[k].first);
         }
-        if(i == 0 || c < lo[k]) lo[k] = c;
-        if(i == 0 || c > hi[k]) hi[k] = c;
-        max_abs = std::max(max_abs, std::abs(c));
+        if(i == 0 || c < box.lo[k]) box.lo[k] = c;
+        if(i == 0 || c > box.hi[k]) box.hi[k] = c;
+        box.max_abs = std::max(box.max_abs, std::abs(c));
       }
     }
+    return box;
+  }
 
-    // 2. the workspace cube
-    double side = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  // step 2: the workspace cube, the cell sizes and the margin of the double computations
+  void set_workspace(const Approximate_box& box)
+  {
+    double side = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
     if(!(side >= 1e-280))
-      side = max_abs >= 1e-280 ? max_abs : 1.0;
-    origin_ = {lo[0], lo[1], lo[2]};
+      side = box.max_abs >= 1e-280 ? box.max_abs : 1.0;
+    origin_ = {box.lo[0], box.lo[1], box.lo[2]};
     side_ = side;
     scale_ = std::ldexp(1.0, int(depth_)) / side;
     top_ = (std::uint32_t(1) << depth_) - 1;
@@ -569,9 +645,15 @@ private:
     // every rounding error of the address computation, of the box corners and of the distance
     // computations is a few ulps of the largest coordinate; the exact points are at most `err`
     // away from their approximations (0 for a double kernel)
-    margin_ = 64 * DBL_EPSILON * (max_abs + side) + 2 * err + 1e-300;
+    margin_ = 64 * DBL_EPSILON * (box.max_abs + side) + 2 * box.err + 1e-300;
+  }
 
-    // 3. Morton codes, sorted with the point index as tie-breaker (a deterministic layout)
+  // step 3: Morton codes, sorted with the point index as tie-breaker (a deterministic layout)
+  template <typename PointRange>
+  std::vector<Key> sorted_keys(const PointRange& range, const PointMap& pm, std::size_t n,
+                               const std::vector<std::array<double, 3>>& approx) const
+  {
+    const auto first = std::begin(range);
     std::vector<Key> keys(n);
     for(std::size_t i = 0; i < n; ++i)
     {
@@ -584,7 +666,16 @@ private:
         keys[i] = Key{code_of(approx[i]), std::uint32_t(i)};
     }
     sort_keys(keys);
+    return keys;
+  }
 
+  // step 4: the points in the order of the keys, with their indices both ways
+  template <typename PointRange>
+  void gather_points(const PointRange& range, const PointMap& pm, const std::vector<Key>& keys,
+                     const std::vector<std::array<double, 3>>& approx)
+  {
+    const auto first = std::begin(range);
+    const std::size_t n = keys.size();
     points_.clear();
     points_.reserve(n);
     approx_.clear();
@@ -593,7 +684,7 @@ private:
     ids_.resize(n);
     positions_.resize(n);
     // the gather is random access into the input: prefetching a few points ahead hides most of
-    // the cache misses (it was a third of the build time)
+    // the cache misses
     constexpr std::size_t ahead = 16;
     for(std::size_t j = 0; j < n; ++j)
     {
@@ -608,9 +699,13 @@ private:
       ids_[j] = id;
       positions_[id] = std::uint32_t(j);
     }
+  }
 
-    // 4. the nodes, breadth first; a node is split if it holds more than `capacity` points of
-    //    at least two different addresses (splitting identical addresses cannot separate them)
+  // step 5: the nodes, breadth first; a node is split if it holds more than `capacity` points of
+  // at least two different addresses (splitting identical addresses cannot separate them)
+  void build_nodes(const std::vector<Key>& keys)
+  {
+    const std::size_t n = keys.size();
     nodes_.clear();
     nodes_.push_back(Node{0, std::uint32_t(n), 0, 0});
     for(std::size_t ni = 0; ni < nodes_.size(); ++ni)
@@ -636,12 +731,6 @@ private:
       }
     }
   }
-
-  struct Key
-  {
-    std::uint64_t code;
-    std::uint32_t id;
-  };
 
   // sorts by (code, id): a stable LSD radix sort on the 33 most significant bits of the codes
   // (10 to 11 levels, enough to separate almost every point), then std::sort on the few runs
@@ -713,14 +802,14 @@ private:
   std::uint32_t position(std::size_t i) const
   {
     if(i >= positions_.size())
-      throw std::out_of_range("Soup_topology::Octree: point index out of range");
+      throw Invalid_input("Soup_topology::Octree: point index out of range");
     return positions_[i];
   }
 
   static void check_radius(const FT& radius)
   {
     if(!(radius >= FT(0)))
-      throw std::invalid_argument("Soup_topology::Octree: the radius must be non-negative");
+      throw Invalid_input("Soup_topology::Octree: the radius must be non-negative");
   }
 
   Query_point approximate(const Point_3& p) const
