@@ -24,6 +24,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -724,6 +726,148 @@ TYPED_TEST(PointMaps, Issue20ByValuePointMap)
     tree.vertices_near_segment(a, b, tol, std::back_inserter(found));
     EXPECT_EQ(found, expected);
   }
+}
+
+// Issue 19: the decisions on real meshes, pinned: every field of the report and a digest of the
+// welded triangles (their coordinates, in the canonical form of `geometric_triangles`), the same
+// for the soup as given and shuffled, rotated and renumbered. The jitter is drawn from the raw
+// output of `std::mt19937_64`, which the standard fixes, so the soups are the same everywhere.
+std::vector<std::array<Point, 3>> portable_jittered_soup(const std::vector<Point>& points,
+                                                         const std::vector<Triangle>& triangles, double jitter,
+                                                         unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  const auto offset = [&] { return jitter * (2 * (static_cast<double>(rng() >> 11) * 0x1.0p-53) - 1); };
+  std::vector<std::array<Point, 3>> soup;
+  for(const Triangle& t : triangles) {
+    std::array<Point, 3> tri;
+    for(int k = 0; k < 3; ++k) {
+      const Point& p = points[t[k]];
+      const double x = p.x() + offset(), y = p.y() + offset(), z = p.z() + offset();
+      tri[k] = Point(x, y, z);
+    }
+    soup.push_back(tri);
+  }
+  return soup;
+}
+
+std::uint64_t geometry_digest(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  std::uint64_t h = 1469598103934665603ull; // FNV-1a over the bits of the coordinates
+  for(const auto& triangle : geometric_triangles(points, triangles))
+    for(const auto& corner : triangle)
+      for(const double c : corner) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &c, sizeof bits);
+        h = (h ^ bits) * 1099511628211ull;
+      }
+  return h;
+}
+
+struct Pinned_weld
+{
+  std::size_t candidate_vertices, merged_vertices, clusters, refused_same_triangle, refused_degenerate,
+    refused_flip, ambiguous_sites, short_edges, border_edges_after;
+  double max_displacement;
+  std::uint64_t digest;
+};
+
+void expect_pinned(const ST::Snap_report& r, const std::uint64_t digest, const Pinned_weld& expected)
+{
+  EXPECT_EQ(r.candidate_vertices, expected.candidate_vertices);
+  EXPECT_EQ(r.merged_vertices, expected.merged_vertices);
+  EXPECT_EQ(r.clusters, expected.clusters);
+  EXPECT_EQ(r.refused_same_triangle, expected.refused_same_triangle);
+  EXPECT_EQ(r.refused_degenerate, expected.refused_degenerate);
+  EXPECT_EQ(r.refused_flip, expected.refused_flip);
+  EXPECT_EQ(r.refused_holds_welds, 0u);
+  EXPECT_EQ(r.ambiguous_sites.size(), expected.ambiguous_sites);
+  EXPECT_EQ(r.short_edges, expected.short_edges);
+  EXPECT_EQ(r.border_edges_after, expected.border_edges_after);
+  EXPECT_NEAR(r.max_displacement, expected.max_displacement, 1e-5 * expected.max_displacement);
+  EXPECT_EQ(digest, expected.digest); // the welded coordinates, bit for bit
+}
+
+TEST(SnapVertices, Issue19DecisionsArePinnedOnAJitteredFandisk)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("clean/fandisk.off.xz", points, triangles);
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  // A jitter close to the tolerance: chains, ambiguous sites and partial clusters.
+  const auto soup = portable_jittered_soup(points, triangles, 0.6e-6 * diag, 19);
+  const double tol = 1e-6 * diag;
+  const Pinned_weld expected{38838, 25928, 9568, 0, 0, 0, 5151, 0, 25588, 1.45208e-06, 7516485718312082217ull};
+  const Weld_result a = weld(soup, tol);
+  expect_pinned(a.report, geometry_digest(a.points, a.triangles), expected);
+
+  std::mt19937 rng(5);
+  std::vector<std::array<Point, 3>> shuffled = soup;
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  for(auto& t : shuffled) std::rotate(t.begin(), t.begin() + rng() % 3, t.end());
+  const Weld_result b = weld(shuffled, tol);
+  expect_pinned(b.report, geometry_digest(b.points, b.triangles), expected);
+}
+
+TEST(SnapVertices, Issue19DecisionsArePinnedOnAlstom)
+{
+  // A CAD model welded at 1e-3 of its diagonal: refusals of every geometric kind and short edges.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  const double tol = 1e-3 * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  const Pinned_weld expected{231, 18, 16, 17, 0, 2, 5, 33, 217, 0.876195, 15065967198876123558ull};
+  for(unsigned seed = 0; seed <= 2; ++seed) {
+    SCOPED_TRACE("permutation " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::vector<std::size_t> relabel(points.size());
+    std::iota(relabel.begin(), relabel.end(), 0);
+    std::vector<Triangle> t = triangles;
+    if(seed != 0) {
+      std::shuffle(relabel.begin(), relabel.end(), rng);
+      std::shuffle(t.begin(), t.end(), rng);
+      for(Triangle& x : t) std::rotate(x.begin(), x.begin() + rng() % 3, x.end());
+    }
+    std::vector<Point> p(points.size());
+    for(std::size_t i = 0; i < points.size(); ++i) p[relabel[i]] = points[i];
+    for(Triangle& x : t) for(std::size_t& v : x) v = relabel[v];
+    const ST::Snap_report r = ST::snap_vertices(p, t, CGAL::parameters::snapping_tolerance(tol));
+    expect_pinned(r, geometry_digest(p, t), expected);
+  }
+}
+
+// Issue 19: a visitor given by value is copied (the caller's object is not told), one given as
+// `std::ref` is told of every decision; both see the same decisions.
+struct Counting_visitor
+{
+  std::size_t merges = 0, refusals = 0;
+  std::size_t* shared_merges = nullptr;
+  void on_merge(std::size_t, std::size_t) { ++merges; if(shared_merges != nullptr) ++*shared_merges; }
+  void on_refusal(std::size_t, std::size_t, ST::Refusal_reason) { ++refusals; }
+};
+
+TEST(SnapVertices, Issue19VisitorIsCopiedUnlessGivenByReference)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+  const double tol = 1e-3 * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  std::size_t merges_seen_by_copy = 0;
+  Counting_visitor by_value;
+  by_value.shared_merges = &merges_seen_by_copy;
+  std::vector<Triangle> t1 = triangles;
+  const ST::Snap_report r1 =
+    ST::snap_vertices(points, t1, CGAL::parameters::visitor(by_value).snapping_tolerance(tol));
+  EXPECT_EQ(by_value.merges, 0u);
+  EXPECT_EQ(merges_seen_by_copy, r1.merged_vertices);
+  Counting_visitor by_reference;
+  std::vector<Triangle> t2 = triangles;
+  const ST::Snap_report r2 =
+    ST::snap_vertices(points, t2, CGAL::parameters::snapping_tolerance(tol).visitor(std::ref(by_reference)));
+  EXPECT_EQ(by_reference.merges, r2.merged_vertices);
+  EXPECT_EQ(by_reference.refusals, r2.refused());
+  EXPECT_GT(r2.refused(), 0u);
+  EXPECT_EQ(t1, t2);
 }
 
 } // namespace

@@ -1,0 +1,545 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The steps of `snap_vertices()`: a worker that holds the state shared by the steps (candidates,
+// tolerance graph, clusters, moves) and whose entry point names them.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_SNAP_VERTICES_WORKER_H
+#define SOUP_TOPOLOGY_INTERNAL_SNAP_VERTICES_WORKER_H
+
+#include <Soup_topology/snap_vertices.h>
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Octree.h>
+#include <Soup_topology/internal/exact_signs.h>
+#include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/tolerance_graph.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/property_map.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iterator>
+#include <memory>
+#include <numeric>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// a grid cell (of diagonal the tolerance) holding more candidates than this makes
+/// `snap_vertices()` build the tolerance graph's components on the grid (same result, no pair list).
+constexpr std::size_t dense_cell_size = 64;
+
+/// `true` if moving the corners of triangle (a, b, c) to (na, nb, nc) keeps it: it does not
+/// become degenerate (unless it was) and its normal is not reversed. Otherwise `why` says which.
+template <class Kernel, class Point>
+bool moves_keep_triangle(const Point& a, const Point& b, const Point& c,
+                         const Point& na, const Point& nb, const Point& nc, const Kernel& kernel,
+                         Refusal_reason& why)
+{
+  const typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
+  const bool was_degenerate = collinear(a, b, c);
+  if(collinear(na, nb, nc)) {
+    if(was_degenerate) return true; // nothing lost
+    why = Refusal_reason::DEGENERATE;
+    return false;
+  }
+  if(was_degenerate) return true;
+  if(sign_of_normal_dot(a, b, c, na, nb, nc) != CGAL::POSITIVE) { why = Refusal_reason::FLIP; return false; }
+  return true;
+}
+
+/// `true` if no moves of the corners of triangle (a, b, c) by at most `delta` each can make it
+/// degenerate or reverse its normal: with n = (b - a) x (c - a), the moves change n by at most
+/// 2 delta (|b - a| + |c - a|) + 4 delta^2, and a change smaller than |n| keeps n' . n > 0. Evaluated
+/// in double with a 1% margin, for `double` coordinates only (otherwise `false`: ask the exact test).
+template <class Point>
+bool fat_enough_for_moves(const Point& a, const Point& b, const Point& c, double delta)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double u[3] = {b.x() - a.x(), b.y() - a.y(), b.z() - a.z()};
+    const double v[3] = {c.x() - a.x(), c.y() - a.y(), c.z() - a.z()};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double norm_n = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double change = 2 * delta * (lu + lv) + 4 * delta * delta;
+    return std::isfinite(norm_n) && norm_n > 1.01 * change + 1e-280;
+  } else {
+    (void)a; (void)b; (void)c; (void)delta;
+    return false;
+  }
+}
+
+/// compares the distances from `p` to `q` and to `r`: in double when they are far from equal
+/// (double coordinates only: the squared distances are then within a few ulps of the exact
+/// ones), else with the kernel's exact `Compare_distance_3`.
+template <class Point, class CompareDistance>
+CGAL::Comparison_result compare_distances(const Point& p, const Point& q, const Point& r,
+                                          const CompareDistance& compare_distance)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const double dq = (q.x() - p.x()) * (q.x() - p.x()) + (q.y() - p.y()) * (q.y() - p.y()) + (q.z() - p.z()) * (q.z() - p.z());
+    const double dr = (r.x() - p.x()) * (r.x() - p.x()) + (r.y() - p.y()) * (r.y() - p.y()) + (r.z() - p.z()) * (r.z() - p.z());
+    if(dq > 1e-250 && dr > 1e-250) {
+      if(dq < dr * (1 - 1e-12)) return CGAL::SMALLER;
+      if(dq > dr * (1 + 1e-12)) return CGAL::LARGER;
+    }
+  }
+  return compare_distance(p, q, r);
+}
+
+/// the visitor type held by `Snap_visitor_holder` for a parameter of type `Given`: `Given`
+/// itself (a copy), or `T` for `std::reference_wrapper<T>` (a reference).
+template <class Given>
+struct Snap_visitor_type
+{
+  using type = Given;
+  static type& get(Given& held) { return held; }
+};
+
+template <class T>
+struct Snap_visitor_type<std::reference_wrapper<T>>
+{
+  using type = T;
+  static type& get(std::reference_wrapper<T>& held) { return held.get(); }
+};
+
+/// the `visitor` parameter of `snap_vertices()`, held safely: a copy of the visitor given (or a
+/// `Default_snap_visitor`), or a reference to it when it is given as `std::ref(v)`.
+template <class NamedParameters>
+class Snap_visitor_holder
+{
+  using Given = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
+                                                                   Default_snap_visitor>::type;
+
+public:
+  /// the type of the visitor told of the decisions.
+  using Visitor = typename Snap_visitor_type<Given>::type;
+
+  /// \param np the parameters of `snap_vertices()`
+  explicit Snap_visitor_holder(const NamedParameters& np)
+    : held_(CGAL::parameters::choose_parameter<Given>(CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor)))
+  {}
+
+  /// the visitor: the copy held, or the visitor referred to.
+  Visitor& get() { return Snap_visitor_type<Given>::get(held_); }
+
+private:
+  Given held_;
+};
+
+/// Welds the vertices of an indexed soup within a tolerance, as documented at `snap_vertices()`.
+/// `run()` names the steps; each step reads and fills the members below, in this order: short
+/// edges, candidates, tolerance graph (components and rows of neighbours), refusals of
+/// same-triangle pairs, clusters, ambiguous sites, geometric guard, application.
+template <class Kernel, class Visitor>
+class Snap_vertices_worker
+{
+  using Point = typename Kernel::Point_3;
+  using FT = typename Kernel::FT;
+  using size_type = Adjacency_tables::size_type;
+  using Pair = std::pair<std::uint32_t, std::uint32_t>;
+
+  static constexpr size_type none = static_cast<size_type>(-1);
+  static constexpr std::uint32_t not_candidate = static_cast<std::uint32_t>(-1);
+
+public:
+  /// \param points the points of the soup, read once through the point map
+  /// \param tables the tables of the soup over `points`, updated by `run()`
+  /// \param eps the absolute tolerance (checked)
+  /// \param fixed nonzero for the vertices that may receive welds but not move, or `nullptr`
+  /// \param kernel the traits object that takes every geometric decision
+  /// \param visitor told of every merge and refusal
+  Snap_vertices_worker(const std::vector<Point>& points, Adjacency_tables& tables, const FT& eps,
+                       const std::vector<char>* fixed, const Kernel& kernel, Visitor& visitor)
+    : points_(points), tables_(tables), eps_(eps), fixed_(fixed), kernel_(kernel), visitor_(visitor)
+  {
+    report_.tolerance = CGAL::to_double(eps);
+    report_.border_edges_before = tables.number_of_border_edges();
+  }
+
+  /// runs the weld and writes the triangles it changed back into `triangles`.
+  template <class TriangleRange>
+  Snap_report run(TriangleRange& triangles)
+  {
+    count_short_edges();
+    collect_candidates();
+    if(candidates_.size() < 2) {
+      report_.border_edges_after = report_.border_edges_before;
+      return report_;
+    }
+    build_tolerance_graph();
+    refuse_same_triangle_pairs();
+    form_clusters();
+    list_ambiguous_sites();
+    guard_against_degenerate_and_flipped_triangles();
+    apply();
+    write_back(triangles);
+    return report_;
+  }
+
+private:
+  const Point& point(size_type v) const { return points_[v]; }
+  size_type final_vertex(size_type v) const { return target_[v] == none ? v : target_[v]; }
+
+  // Short edges: where the minimum feature separation is not met.
+  void count_short_edges()
+  {
+    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
+    const FT eps2 = eps_ * eps_;
+    // With double coordinates, a squared length far above eps2 (computed in double, within a
+    // few ulps of the exact value) is decided without the exact predicate.
+    const double eps2d = CGAL::to_double(eps2);
+    constexpr bool double_coordinates = std::is_same<FT, double>::value;
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+      for(int i = 0; i < 3; ++i) {
+        const size_type u = tables_.neighbor(t, i);
+        if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
+        const Point& p = point(tables_.vertex(t, i));
+        const Point& q = point(tables_.vertex(t, (i + 1) % 3));
+        if constexpr(double_coordinates) {
+          const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+          const double d2 = dx * dx + dy * dy + dz * dz;
+          if(d2 > eps2d * (1 + 1e-12) && d2 > 1e-250) continue;
+        }
+        if(compare_sq(p, q, eps2) != CGAL::LARGER) ++report_.short_edges;
+      }
+  }
+
+  // Candidates: the end points of border edges, in increasing index order.
+  void collect_candidates()
+  {
+    std::vector<char> on_border(points_.size(), 0);
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+      for(int i = 0; i < 3; ++i)
+        if(tables_.is_border_edge(t, i))
+          on_border[tables_.vertex(t, i)] = on_border[tables_.vertex(t, (i + 1) % 3)] = 1;
+    for(size_type v = 0; v < points_.size(); ++v)
+      if(on_border[v]) candidates_.push_back(v);
+    report_.candidate_vertices = candidates_.size();
+  }
+
+  // The tolerance graph over the candidates (local ids): its connected components (same-triangle
+  // pairs included: the sites reported as ambiguous are components) and, unless a cluster is
+  // dense, the rows of neighbours of every candidate. With a dense cluster (many candidates in a
+  // cell of the grid whose diagonal is the tolerance), a grid joins whole cells without listing
+  // their pairs, and the neighbours of a representative are asked of the octree when it is
+  // chosen. Otherwise one self-join over the octree gives every neighbourhood at once. Both
+  // decide every pair by the same exact predicate: the components and the clusters are the same.
+  void build_tolerance_graph()
+  {
+    const std::size_t n = candidates_.size();
+    candidate_points_.reserve(n);
+    for(size_type v : candidates_) candidate_points_.push_back(point(v));
+    tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
+    find_same_triangle_pairs();
+    components_.reset(n);
+    Tolerance_grid<Kernel> grid(candidate_points_, eps_, kernel_);
+    dense_ = grid.usable() && grid.largest_cell() > dense_cell_size;
+    if(dense_)
+      grid.unite_components(components_);
+    else
+      join_neighborhoods();
+  }
+
+  // Pairs of vertices of one triangle within the tolerance: never merged, found from the
+  // triangles, listed in the order of the octree's self-join (Morton order of the first vertex),
+  // once each.
+  void find_same_triangle_pairs()
+  {
+    std::vector<std::uint32_t> local(points_.size(), not_candidate);
+    for(std::size_t c = 0; c < candidates_.size(); ++c) local[candidates_[c]] = static_cast<std::uint32_t>(c);
+    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
+    const FT eps2 = eps_ * eps_;
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+      for(int i = 0; i < 3; ++i) {
+        const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
+        if(a == not_candidate || b == not_candidate) continue;
+        if(compare_sq(candidate_points_[a], candidate_points_[b], eps2) != CGAL::LARGER)
+          same_triangle_pairs_.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    const Octree<Kernel>& tree = *tree_;
+    std::sort(same_triangle_pairs_.begin(), same_triangle_pairs_.end(), [&](const Pair& x, const Pair& y) {
+      const std::uint64_t cx = tree.morton_code(x.first), cy = tree.morton_code(y.first);
+      return cx < cy || (cx == cy && x < y);
+    });
+    same_triangle_pairs_.erase(std::unique(same_triangle_pairs_.begin(), same_triangle_pairs_.end()),
+                               same_triangle_pairs_.end());
+  }
+
+  // The octree's self-join: unites every pair within the tolerance and fills the rows of
+  // neighbours (in Morton order, then indexed by candidate), leaving out same-triangle pairs.
+  void join_neighborhoods()
+  {
+    const std::size_t n = candidates_.size();
+    row_start_.resize(n);
+    row_end_.resize(n);
+    std::vector<char> mate(points_.size(), 0);
+    auto mark_mates = [&](std::size_t c, char value) {
+      for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
+        for(size_type v : tables_.triangle(t)) mate[v] = value;
+    };
+    tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
+      mark_mates(c, 1);
+      row_start_[c] = row_.size();
+      for(std::size_t d : found) {
+        if(d == c) continue;
+        components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
+        if(!mate[candidates_[d]]) row_.push_back(static_cast<std::uint32_t>(d));
+      }
+      row_end_[c] = row_.size();
+      mark_mates(c, 0);
+    });
+  }
+
+  void refuse_same_triangle_pairs()
+  {
+    for(const Pair& pr : same_triangle_pairs_) {
+      ++report_.refused_same_triangle;
+      visitor_.on_refusal(candidates_[pr.second], candidates_[pr.first], Refusal_reason::SAME_TRIANGLE);
+    }
+  }
+
+  // Clusters: canonical representatives, no chaining, no two vertices of one triangle. The
+  // candidates are visited in lexicographic order (ties: index); an unassigned one is the
+  // smallest unassigned candidate of its component, and becomes a representative.
+  void form_clusters()
+  {
+    const std::size_t n = candidates_.size();
+    const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
+    lex_order_.resize(n);
+    std::iota(lex_order_.begin(), lex_order_.end(), 0u);
+    std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return less_xyz(candidate_points_[a], candidate_points_[b]);
+    });
+    target_.assign(points_.size(), none);
+    in_cluster_mark_.assign(tables_.number_of_triangles(), static_cast<std::uint32_t>(-1));
+    mate_of_.assign(points_.size(), not_candidate);
+    assigned_.assign(n, false);
+    component_size_.assign(n, 0);
+    largest_cluster_.assign(n, 0);
+    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[components_.find(c)];
+    for(const std::uint32_t rep : lex_order_) {
+      if(assigned_[rep]) continue;
+      assigned_[rep] = true;
+      const std::uint32_t root = components_.find(rep);
+      if(component_size_[root] < 2) continue;
+      gather_members(rep);
+      const std::uint32_t cluster_size = join_members(rep);
+      largest_cluster_[root] = std::max(largest_cluster_[root], cluster_size);
+    }
+  }
+
+  // The unassigned neighbours of the representative `rep` that share no triangle with it,
+  // nearest first (ties by `Less_xyz_3`), into `members_`.
+  void gather_members(std::uint32_t rep)
+  {
+    members_.clear();
+    if(dense_) {
+      for(size_type t : tables_.triangles_around_vertex(candidates_[rep]))
+        for(size_type v : tables_.triangle(t)) mate_of_[v] = rep;
+      found_.clear();
+      tree_->vertices_near_point(candidate_points_[rep], eps_, std::back_inserter(found_));
+      for(std::size_t d : found_)
+        if(d != rep && !assigned_[d] && mate_of_[candidates_[d]] != rep) members_.push_back(static_cast<std::uint32_t>(d));
+    } else {
+      for(std::size_t k = row_start_[rep]; k < row_end_[rep]; ++k)
+        if(!assigned_[row_[k]]) members_.push_back(row_[k]);
+    }
+    const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
+    const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
+    const Point& center = candidate_points_[rep];
+    std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
+                                                          compare_distance);
+      if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+      return less_xyz(candidate_points_[a], candidate_points_[b]);
+    });
+    members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
+  }
+
+  // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
+  // a triangle with a vertex already in the cluster; returns the size of the cluster.
+  std::uint32_t join_members(std::uint32_t rep)
+  {
+    const size_type rep_v = candidates_[rep];
+    ++cluster_id_;
+    for(size_type t : tables_.triangles_around_vertex(rep_v)) in_cluster_mark_[t] = cluster_id_;
+    std::uint32_t cluster_size = 1;
+    for(std::uint32_t m : members_) {
+      const size_type mv = candidates_[m];
+      if(fixed_ != nullptr && (*fixed_)[mv]) {
+        // mv received welds in an earlier call: it may be a representative, never move.
+        ++report_.refused_holds_welds;
+        visitor_.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
+        continue;
+      }
+      bool conflict = false;
+      for(size_type t : tables_.triangles_around_vertex(mv))
+        if(in_cluster_mark_[t] == cluster_id_) { conflict = true; break; }
+      if(conflict) {
+        ++report_.refused_same_triangle;
+        visitor_.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
+        continue;
+      }
+      for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark_[t] = cluster_id_;
+      assigned_[m] = true;
+      target_[mv] = rep_v;
+      ++cluster_size;
+    }
+    return cluster_size;
+  }
+
+  // Ambiguous sites: the components that hold two vertices of one triangle, or that did not all
+  // go to one representative. Each is listed by its lexicographically smallest point, so that
+  // the sites do not depend on the numbering of the vertices.
+  void list_ambiguous_sites()
+  {
+    const std::size_t n = candidates_.size();
+    std::vector<char> ambiguous(n, 0);
+    for(const Pair& pr : same_triangle_pairs_) ambiguous[components_.find(pr.first)] = 1;
+    for(std::uint32_t c = 0; c < n; ++c)
+      if(components_.find(c) == c && component_size_[c] >= 2 && largest_cluster_[c] != component_size_[c])
+        ambiguous[c] = 1;
+    for(const std::uint32_t c : lex_order_) {
+      const std::uint32_t root = components_.find(c);
+      if(ambiguous[root]) {
+        report_.ambiguous_sites.push_back(candidates_[c]);
+        ambiguous[root] = 0;
+      }
+    }
+    std::sort(report_.ambiguous_sites.begin(), report_.ambiguous_sites.end());
+  }
+
+  // Geometric validity: no triangle may become degenerate or flip; refuse until stable. Each
+  // pass checks every touched triangle against the moves of the previous pass and cancels the
+  // moves of all failing triangles at once, so the result does not depend on the order in which
+  // the triangles are stored.
+  void guard_against_degenerate_and_flipped_triangles()
+  {
+    std::vector<char> is_touched(tables_.number_of_triangles(), 0);
+    for(size_type v : candidates_)
+      if(target_[v] != none)
+        for(size_type t : tables_.triangles_around_vertex(v)) is_touched[t] = 1;
+    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+      if(is_touched[t]) touched_.push_back(t);
+    while(cancel_failing_moves()) {}
+  }
+
+  // One pass of the guard; `true` if some move was cancelled.
+  bool cancel_failing_moves()
+  {
+    cancelled_.clear();
+    for(size_type t : touched_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) continue;
+      Refusal_reason why = Refusal_reason::FLIP;
+      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) continue;
+      if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
+        continue;
+      for(size_type v : tr)
+        if(target_[v] != none) cancelled_.emplace_back(v, why);
+    }
+    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
+    std::sort(cancelled_.begin(), cancelled_.end(), [](const auto& x, const auto& y) {
+      return x.first < y.first || (x.first == y.first && x.second < y.second);
+    });
+    bool changed = false;
+    for(const auto& [v, why] : cancelled_) {
+      if(target_[v] == none) continue;
+      visitor_.on_refusal(v, target_[v], why);
+      if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate; else ++report_.refused_flip;
+      target_[v] = none;
+      changed = true;
+    }
+    return changed;
+  }
+
+  // Applies the merges, in increasing index order. Few merges: local updates of the tables
+  // (`replace_vertex`, the patent's rules (a)-(c)). Many merges (an exploded soup): the
+  // triangles are rewritten once and the tables rebuilt, which is linear, where thousands of
+  // local updates around the same representatives are not. Both give the same tables.
+  void apply()
+  {
+    std::size_t number_of_merges = 0;
+    for(size_type v : candidates_)
+      if(target_[v] != none) ++number_of_merges;
+    const bool rebuild = number_of_merges > tables_.number_of_triangles() / 16 + 64;
+    if(rebuild) {
+      std::vector<Adjacency_tables::Triangle> rewritten(tables_.triangles());
+      for(Adjacency_tables::Triangle& tr : rewritten)
+        for(size_type& v : tr) v = final_vertex(v);
+      tables_ = Adjacency_tables(rewritten, points_.size());
+    }
+    const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
+    std::vector<char> is_representative(points_.size(), 0);
+    for(size_type v : candidates_) {
+      if(target_[v] == none) continue;
+      const size_type r = target_[v];
+      if(!rebuild) tables_.replace_vertex(v, r);
+      visitor_.on_merge(v, r);
+      ++report_.merged_vertices;
+      if(!is_representative[r]) { is_representative[r] = 1; ++report_.clusters; }
+      report_.max_displacement =
+        std::max(report_.max_displacement, std::sqrt(CGAL::to_double(squared_distance(point(v), point(r)))));
+    }
+    report_.border_edges_after = tables_.number_of_border_edges();
+  }
+
+  template <class TriangleRange>
+  void write_back(TriangleRange& triangles) const
+  {
+    for(size_type t : touched_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      assign_triangle(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)), tr[0], tr[1], tr[2]);
+    }
+  }
+
+  // Input.
+  const std::vector<Point>& points_;
+  Adjacency_tables& tables_;
+  const FT eps_;
+  const std::vector<char>* fixed_;
+  const Kernel kernel_;
+  Visitor& visitor_;
+  Snap_report report_;
+  // Candidates and the tolerance graph over them (local ids).
+  std::vector<size_type> candidates_;
+  std::vector<Point> candidate_points_;
+  std::unique_ptr<Octree<Kernel>> tree_;
+  std::vector<Pair> same_triangle_pairs_;
+  Union_find components_;
+  bool dense_ = false;
+  std::vector<std::uint32_t> row_;                      // neighbours of each candidate, by row
+  std::vector<std::size_t> row_start_, row_end_;
+  // Clusters.
+  std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order
+  std::vector<size_type> target_;                       // representative of a merged vertex, or none
+  std::vector<std::uint32_t> in_cluster_mark_;          // triangles around the current cluster
+  std::vector<std::uint32_t> mate_of_;                  // vertices sharing a triangle with the representative
+  std::vector<bool> assigned_;
+  std::vector<std::uint32_t> component_size_, largest_cluster_;
+  std::vector<std::uint32_t> members_;
+  std::vector<std::size_t> found_;
+  std::uint32_t cluster_id_ = 0;
+  // Geometric guard.
+  std::vector<size_type> touched_;                      // triangles around a moved vertex
+  std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
+};
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_SNAP_VERTICES_WORKER_H
