@@ -204,6 +204,7 @@ public:
 
 /// \relates Triangle_adjacency_graph
 /// returns the triangle adjacency graph of `tables` (a view; `tables` must outlive it).
+/// \param tables the adjacency tables seen as a graph
 inline Triangle_adjacency_graph triangle_adjacency_graph(const Adjacency_tables& tables)
 { return Triangle_adjacency_graph(tables); }
 
@@ -219,6 +220,8 @@ namespace Soup_topology {
 /// \relates Triangle_adjacency_graph
 /// the number of graph edges of `t`: one per manifold edge, `k - 1` per edge shared by `k >= 3`
 /// triangles, none per border edge.
+/// \param t a triangle (a vertex of the graph)
+/// \param g the graph
 inline std::size_t out_degree(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -236,6 +239,7 @@ inline std::size_t out_degree(Triangle_adjacency_graph::size_type t, const Trian
 
 /// \relates Triangle_adjacency_graph
 /// every undirected edge once, oriented from its smaller triangle to its larger one.
+/// \param g the graph
 inline std::pair<Triangle_adjacency_graph::Edge_iterator, Triangle_adjacency_graph::Edge_iterator>
 edges(const Triangle_adjacency_graph& g)
 {
@@ -246,6 +250,7 @@ edges(const Triangle_adjacency_graph& g)
 
 /// \relates Triangle_adjacency_graph
 /// the number of graph edges (linear time).
+/// \param g the graph
 inline std::size_t num_edges(const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -269,6 +274,7 @@ inline std::size_t num_edges(const Triangle_adjacency_graph& g)
 /// \relates Triangle_adjacency_graph
 /// one past the largest edge index: `3 n max(1, k - 1)` with `n` triangles and `k` the largest
 /// number of triangles sharing one edge (`3 n` for a manifold soup). Linear time.
+/// \param g the graph
 inline std::size_t edge_index_upper_bound(const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -284,6 +290,8 @@ inline std::size_t edge_index_upper_bound(const Triangle_adjacency_graph& g)
 
 /// \relates Triangle_adjacency_graph
 /// `true` if `e` crosses an edge shared by exactly two triangles.
+/// \param e an edge of `g`
+/// \param g the graph
 inline bool is_manifold_edge(const Triangle_adjacency_graph::Edge& e, const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -294,6 +302,8 @@ inline bool is_manifold_edge(const Triangle_adjacency_graph::Edge& e, const Tria
 /// \relates Triangle_adjacency_graph
 /// the triangle index and the local edge index (in the numbering of `Adjacency_tables`) of edge
 /// `e` in its smaller triangle.
+/// \param e an edge of `g`
+/// \param g the graph
 inline Adjacency_tables::Edge halfedge_in_smaller_triangle(const Triangle_adjacency_graph::Edge& e,
                                                            const Triangle_adjacency_graph& g)
 {

@@ -168,6 +168,7 @@ public:
 
 /// \relates Vertex_adjacency_graph
 /// returns the vertex adjacency graph of `tables` (a view; `tables` must outlive it).
+/// \param tables the adjacency tables seen as a graph
 inline Vertex_adjacency_graph vertex_adjacency_graph(const Adjacency_tables& tables)
 { return Vertex_adjacency_graph(tables); }
 
@@ -182,6 +183,8 @@ namespace Soup_topology {
 
 /// \relates Vertex_adjacency_graph
 /// the number of distinct vertices sharing a triangle with `v`.
+/// \param v a vertex (a vertex of the graph)
+/// \param g the graph
 inline std::size_t out_degree(Vertex_adjacency_graph::size_type v, const Vertex_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -196,6 +199,7 @@ inline std::size_t out_degree(Vertex_adjacency_graph::size_type v, const Vertex_
 
 /// \relates Vertex_adjacency_graph
 /// every edge once, oriented as in the smallest triangle that contains it.
+/// \param g the graph
 inline std::pair<Vertex_adjacency_graph::Edge_iterator, Vertex_adjacency_graph::Edge_iterator>
 edges(const Vertex_adjacency_graph& g)
 {
@@ -205,6 +209,7 @@ edges(const Vertex_adjacency_graph& g)
 
 /// \relates Vertex_adjacency_graph
 /// the number of edges (linear time).
+/// \param g the graph
 inline std::size_t num_edges(const Vertex_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -217,10 +222,13 @@ inline std::size_t num_edges(const Vertex_adjacency_graph& g)
 
 /// \relates Vertex_adjacency_graph
 /// one past the largest edge index: `3 number_of_triangles`.
+/// \param g the graph
 inline std::size_t edge_index_upper_bound(const Vertex_adjacency_graph& g) { return 3 * g.tables().number_of_triangles(); }
 
 /// \relates Vertex_adjacency_graph
 /// the triangle and local edge index of the occurrence of `e` in the smallest triangle containing it.
+/// \param e an edge of `g`
+/// \param g the graph
 inline Adjacency_tables::Edge halfedge_in_smaller_triangle(const Vertex_adjacency_graph::Edge& e,
                                                            const Vertex_adjacency_graph&)
 { return Adjacency_tables::Edge{static_cast<Adjacency_tables::size_type>(e.id / 3), int(e.id % 3)}; }

@@ -21,6 +21,12 @@
 #include <cstddef>
 #include <utility>
 
+// Called with the length of every list of triangles that the views scan to find the triangles
+// of an edge shared by three or more triangles; the tests define it to bound that work.
+#ifndef SOUP_TOPOLOGY_GRAPH_VIEW_SCAN
+#define SOUP_TOPOLOGY_GRAPH_VIEW_SCAN(number_of_triangles)
+#endif
+
 namespace Soup_topology {
 namespace internal {
 
@@ -31,7 +37,9 @@ inline std::pair<Adjacency_tables::size_type, Adjacency_tables::size_type>
 edge_ends_fewer_triangles_first(const Adjacency_tables& tables, Adjacency_tables::size_type t, int i)
 {
   const Adjacency_tables::size_type a = tables.vertex(t, i), b = tables.vertex(t, (i + 1) % 3);
-  if(tables.degree(b) < tables.degree(a)) return {b, a};
+  const bool b_first = tables.degree(b) < tables.degree(a);
+  SOUP_TOPOLOGY_GRAPH_VIEW_SCAN(tables.degree(b_first ? b : a));
+  if(b_first) return {b, a};
   return {a, b};
 }
 
