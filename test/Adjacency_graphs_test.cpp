@@ -3,6 +3,14 @@
 //
 // Tests of the Boost.Graph views Triangle_adjacency_graph and Vertex_adjacency_graph.
 
+#include <cstddef>
+
+// The number of triangles the views scan to list the triangles of non-manifold edges.
+namespace {
+std::size_t graph_view_scanned_triangles = 0;
+}
+#define SOUP_TOPOLOGY_GRAPH_VIEW_SCAN(number_of_triangles) (graph_view_scanned_triangles += (number_of_triangles))
+
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/Triangle_adjacency_graph.h>
@@ -435,6 +443,56 @@ TEST(AdjacencyGraphs, FilteredGraphWalksManifoldEdgesOnly)
   std::vector<std::size_t> cc(num_vertices(g));
   EXPECT_EQ(boost::connected_components(g, boost::make_iterator_property_map(cc.begin(), get(boost::vertex_index, g))), 1u);
   EXPECT_EQ(boost::connected_components(fg, boost::make_iterator_property_map(cc.begin(), get(boost::vertex_index, g))), 2u);
+}
+
+// A vertex in 100,000 triangles whose edges are non-manifold: its out-edges in the vertex view
+// are found by scanning the short lists of its neighbours, not its own list once per edge.
+TEST(AdjacencyGraphs, OutEdgesOfAHighDegreeVertexScanLinearly)
+{
+  const std::size_t m = 50000;   // centre 0, ring 1..m, fins m+1..2m
+  std::vector<Face> triangles;
+  for(std::size_t j = 1; j < m; ++j) triangles.push_back({0, j, j + 1});
+  for(std::size_t j = 1; j <= m; ++j) triangles.push_back({0, j, m + j});
+  const ST::Adjacency_tables adj(triangles, 2 * m + 1);
+  ASSERT_EQ(adj.degree(0), 2 * m - 1);
+  ASSERT_TRUE(adj.is_non_manifold_edge(0, 2));   // edge (2, 0) of triangle (0, 1, 2) is in 3 triangles
+  const VG g(adj);
+  graph_view_scanned_triangles = 0;
+  std::size_t count = 0;
+  for(auto [e, e_end] = out_edges(0, g); e != e_end; ++e) {
+    EXPECT_EQ(source(*e, g), 0u);
+    ++count;
+  }
+  EXPECT_EQ(count, 2 * m);
+  EXPECT_EQ(out_degree(0, g), 2 * m);
+  // Two scans per non-manifold edge at 0 (out_edges and out_degree), of at most 3 triangles.
+  EXPECT_LE(graph_view_scanned_triangles, 2 * 4 * 3 * m);
+}
+
+// A triangle adjacent to 100,000 others across one edge whose first vertex is in 400,000 more
+// triangles: its out-edges are found by scanning the list of the other end once.
+TEST(AdjacencyGraphs, OutEdgesOfAHighDegreeTriangleScanLinearly)
+{
+  const std::size_t k = 100001;   // pages (0, 1, p) on the spine (0, 1)
+  const std::size_t fan = 400000; // fan (0, q, q + 1) away from the spine
+  std::vector<Face> triangles;
+  for(std::size_t p = 2; p < k + 2; ++p) triangles.push_back({0, 1, p});
+  for(std::size_t q = k + 2; q < k + 2 + fan; ++q) triangles.push_back({0, q, q + 1});
+  const ST::Adjacency_tables adj(triangles, k + 3 + fan);
+  const TG g(adj);
+  const size_type t = static_cast<size_type>(k / 2);
+  graph_view_scanned_triangles = 0;
+  std::size_t count = 0;
+  for(auto [e, e_end] = out_edges(t, g); e != e_end; ++e) {
+    EXPECT_EQ(source(*e, g), t);
+    EXPECT_FALSE(ST::is_manifold_edge(*e, g));
+    ++count;
+  }
+  EXPECT_EQ(count, k - 1);
+  EXPECT_LE(graph_view_scanned_triangles, adj.degree(1));
+  graph_view_scanned_triangles = 0;
+  EXPECT_EQ(out_degree(t, g), k - 1);
+  EXPECT_LE(graph_view_scanned_triangles, adj.degree(1));
 }
 
 TEST(AdjacencyGraphs, EmptySoup)

@@ -417,7 +417,7 @@ std::uint64_t checksum(const std::vector<Point>& points, const std::vector<Trian
 
 TEST(HostileInput, Issue21VrmlKicadFilesReadAsBefore)
 {
-  // counts and checksums of the reader before the budgets and the shared-Coordinate change
+  // reference counts and checksums of the points, triangles and shapes read from each file
   struct Expected
   {
     const char* file;

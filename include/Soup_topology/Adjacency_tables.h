@@ -97,6 +97,8 @@ public:
   /// builds the tables of `faces` over `number_of_points` points.
   /// \tparam FaceRange a range of faces, each a random-access range of 3 vertex indices
   ///         (`std::array<std::size_t,3>`, `std::vector<int>`, ...).
+  /// \param faces the triangles of the soup
+  /// \param number_of_points the number of points of the soup; the indices of `faces` are below it
   /// \throws Invalid_input if a face is not a triangle, repeats an index or has an index out of
   ///         range; the message names the face.
   template <class FaceRange>
@@ -119,38 +121,56 @@ public:
   std::size_t number_of_vertices() const { return vertex_begin_.size(); }
   std::size_t number_of_triangles() const { return triangles_.size(); }
   /// the vertex indices of triangle `t`.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
   const Triangle& triangle(size_type t) const { return triangles_[t]; }
   /// all triangles, in index order (they change with `replace_vertex()` and `split_triangle()`).
   const std::vector<Triangle>& triangles() const { return triangles_; }
   /// vertex `i` (0, 1 or 2) of triangle `t`.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param i the local index of the vertex, 0, 1 or 2
   size_type vertex(size_type t, int i) const { return triangles_[t][static_cast<std::size_t>(i)]; }
   /// @}
 
   /// \name The vertex-neighbour table
   /// @{
   /// the triangles that contain `v`, in increasing order.
+  /// \param v a vertex index, in `[0, number_of_vertices())`
   Id_range triangles_around_vertex(size_type v) const
   {
     const size_type* b = ids_.data() + vertex_begin_[v];
     return Id_range(b, b + vertex_size_[v]);
   }
   /// the number of triangles that contain `v`.
+  /// \param v a vertex index, in `[0, number_of_vertices())`
   std::size_t degree(size_type v) const { return vertex_size_[v]; }
   /// @}
 
   /// \name The edge-neighbour table
   /// @{
   /// the neighbour of `t` across its edge `i`, or `border_edge`, or `non_manifold_edge`.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param i the local index of the edge, 0, 1 or 2
   size_type neighbor(size_type t, int i) const { return neighbors_[3 * std::size_t(t) + std::size_t(i)]; }
+  /// `true` if edge `i` of `t` belongs to `t` alone.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param i the local index of the edge, 0, 1 or 2
   bool is_border_edge(size_type t, int i) const { return neighbor(t, i) == border_edge; }
+  /// `true` if edge `i` of `t` is shared by three or more triangles.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param i the local index of the edge, 0, 1 or 2
   bool is_non_manifold_edge(size_type t, int i) const { return neighbor(t, i) == non_manifold_edge; }
   /// the local index (0, 1, 2) of vertex `v` in triangle `t`, or -1.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param v a vertex index
   int local_index(size_type t, size_type v) const
   {
     const Triangle& tr = triangles_[t];
     return tr[0] == v ? 0 : tr[1] == v ? 1 : tr[2] == v ? 2 : -1;
   }
   /// the local index of the edge `{a, b}` in triangle `t` (either direction), or -1.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param a a vertex index, one end of the edge
+  /// \param b a vertex index, the other end
   int edge_index(size_type t, size_type a, size_type b) const
   {
     const int ia = local_index(t, a), ib = local_index(t, b);
@@ -161,6 +181,11 @@ public:
   }
   /// writes to `out` every triangle other than `t` that contains edge `i` of `t`, in increasing order.
   /// Time linear in the smaller degree of the two end vertices.
+  /// \tparam OutputIterator an output iterator accepting `size_type`
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+  /// \param i the local index of the edge, 0, 1 or 2
+  /// \param out where the triangles are written
+  /// \return `out` past the last triangle written
   template <class OutputIterator>
   OutputIterator triangles_around_edge(size_type t, int i, OutputIterator out) const
   {
@@ -224,6 +249,7 @@ public:
   /// or not, are connected). If `component` is not null it receives, for every triangle, the id
   /// of its component; ids are numbered by their smallest triangle, from 0.
   /// Linear time (union-find; the triangles of a non-manifold edge are joined to its smallest one).
+  /// \param component null, or the vector that receives the component of every triangle
   std::size_t number_of_connected_components(std::vector<size_type>* component = nullptr) const
   {
     const std::size_t n = triangles_.size();
@@ -275,6 +301,8 @@ public:
   /// Only the edges `{original, w}`, `w` a neighbour of `duplicate`, are resolved again; the
   /// triangle lists are merged in time linear in the two degrees (constant time per moved
   /// triangle when they all come after those of `original`, as in a weld of later copies).
+  /// \param duplicate the vertex that disappears
+  /// \param original the vertex that replaces it
   /// \throws Invalid_input if a triangle contains both vertices (it would degenerate); nothing is
   ///         changed then.
   void replace_vertex(size_type duplicate, size_type original)
@@ -318,6 +346,9 @@ public:
   /// index with `v_{i+1}` replaced by `v_new`, and a new triangle with `v_i` replaced by `v_new` is
   /// appended. The vertex table is updated by rule table (17) and the edge neighbours of the
   /// touched vertices are recomputed. Returns the index of the new triangle.
+  /// \param t the triangle split
+  /// \param i the local index of the edge of `t` that `v_new` lies on, 0, 1 or 2
+  /// \param v_new the vertex that splits that edge
   /// \throws Invalid_input if `v_new` is a vertex of `t` or an index is out of range.
   size_type split_triangle(size_type t, int i, size_type v_new)
   {

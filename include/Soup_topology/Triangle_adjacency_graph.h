@@ -8,12 +8,9 @@
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/internal/graph_edge_descriptor.h>
+#include <Soup_topology/internal/graph_view_base.h>
 
-#include <boost/graph/graph_traits.hpp>
-#include <boost/graph/properties.hpp>
-#include <boost/iterator/counting_iterator.hpp>
 #include <boost/iterator/iterator_facade.hpp>
-#include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
 #include <cstddef>
@@ -22,6 +19,109 @@
 #include <vector>
 
 namespace Soup_topology {
+
+namespace internal {
+
+struct Triangle_adjacency_edge_tag {};
+
+// Walks the graph edges of one triangle `t` of the triangle adjacency graph: the partners of its
+// three edges, in the order (local edge, partner triangle). With `only_larger` only partners
+// larger than `t` are listed (each undirected edge once, from its smaller triangle).
+class Triangle_edge_walker
+{
+public:
+  using size_type = Adjacency_tables::size_type;
+  using Edge = Graph_edge<Triangle_adjacency_edge_tag>;
+
+  Triangle_edge_walker() = default;
+  // The end position, for any triangle.
+  explicit Triangle_edge_walker(size_type t) : t_(t), i_(3) {}
+  Triangle_edge_walker(const Adjacency_tables* tables, size_type t, bool only_larger)
+    : tables_(tables), t_(t), i_(0), only_larger_(only_larger)
+  { settle(); }
+
+  // The first and the past-the-end positions of the out-edges of `t`.
+  static Triangle_edge_walker first(const Adjacency_tables& tables, size_type t)
+  { return Triangle_edge_walker(&tables, t, false); }
+  static Triangle_edge_walker past_the_end(const Adjacency_tables&, size_type t)
+  { return Triangle_edge_walker(t); }
+
+  bool at_end() const { return i_ == 3; }
+  size_type triangle() const { return t_; }
+  size_type adjacent_vertex() const { return p_ != nullptr ? *p_ : tables_->neighbor(t_, i_); }
+
+  Edge edge() const
+  {
+    const size_type u = adjacent_vertex();
+    const std::size_t n = tables_->number_of_triangles();
+    if(p_ == nullptr) {   // manifold
+      if(t_ < u) return Edge(t_, u, 3 * std::size_t(t_) + std::size_t(i_));
+      const int j = tables_->edge_index(u, tables_->vertex(t_, i_), tables_->vertex(t_, (i_ + 1) % 3));
+      return Edge(t_, u, 3 * std::size_t(u) + std::size_t(j));
+    }
+    if(t_ < u)
+      return Edge(t_, u, 3 * std::size_t(t_) + std::size_t(i_) + 3 * n * std::size_t(rank_ - rank_t_ - 1));
+    const int j = tables_->edge_index(u, tables_->vertex(t_, i_), tables_->vertex(t_, (i_ + 1) % 3));
+    return Edge(t_, u, 3 * std::size_t(u) + std::size_t(j) + 3 * n * std::size_t(rank_t_ - rank_ - 1));
+  }
+
+  void increment()
+  {
+    if(p_ != nullptr) { ++rank_; ++p_; }
+    else ++i_;
+    settle();
+  }
+
+  friend bool operator==(const Triangle_edge_walker& a, const Triangle_edge_walker& b)
+  { return a.t_ == b.t_ && a.i_ == b.i_ && a.p_ == b.p_; }
+
+private:
+  // Moves to the first valid position at or after the current one.
+  void settle()
+  {
+    while(i_ < 3) {
+      if(p_ == nullptr) {
+        const size_type u = tables_->neighbor(t_, i_);
+        if(u == Adjacency_tables::border_edge) { ++i_; continue; }
+        if(u != Adjacency_tables::non_manifold_edge) {
+          if(!only_larger_ || u > t_) return;
+          ++i_;
+          continue;
+        }
+        // A non-manifold edge: walk the triangles of one end that contain the other end.
+        const auto ends = edge_ends_fewer_triangles_first(*tables_, t_, i_);
+        const Adjacency_tables::Id_range around = tables_->triangles_around_vertex(ends.first);
+        p_ = around.begin();
+        pe_ = around.end();
+        b_ = ends.second;
+        rank_ = 0;
+        rank_t_ = 0;
+        for(const size_type* q = p_; *q != t_; ++q)
+          if(tables_->local_index(*q, b_) >= 0) ++rank_t_;
+      }
+      for(; p_ != pe_; ++p_) {
+        const size_type u = *p_;
+        if(tables_->local_index(u, b_) < 0) continue;
+        if(u != t_ && (!only_larger_ || u > t_)) return;
+        ++rank_;
+      }
+      p_ = pe_ = nullptr;
+      ++i_;
+    }
+  }
+
+  const Adjacency_tables* tables_ = nullptr;
+  size_type t_ = 0;
+  int i_ = 3;
+  bool only_larger_ = false;
+  const size_type* p_ = nullptr;   // non-null while walking the triangles of a non-manifold edge
+  const size_type* pe_ = nullptr;
+  size_type b_ = 0;                // the end of that edge not walked around
+  size_type rank_ = 0;             // rank of *p_ among the triangles of that edge
+  size_type rank_t_ = 0;           // rank of t_ among them
+};
+
+} // namespace internal
 
 /// \ingroup PkgSoupTopologyGraphs
 /// \brief the triangle adjacency (dual) graph of an `Adjacency_tables`, as a Boost.Graph view
@@ -48,143 +148,28 @@ namespace Soup_topology {
 /// reversed), `AdjacencyGraph` and `EdgeListGraph`, with readable `vertex_index` and
 /// `edge_index` property maps. `out_edges()`, `out_degree()` and `adjacent_vertices()` take
 /// constant time per triangle on manifold edges; `num_edges()` and `edge_index_upper_bound()`
-/// take linear time. The view reflects the current state of the tables: after a local update
-/// (`Adjacency_tables::replace_vertex()`, `split_triangle()`) descriptors and iterators obtained
-/// before it are invalid.
+/// take linear time. On an edge shared by `k >= 3` triangles they scan the triangles around the
+/// end of the edge that is in fewer triangles. The view reflects the current state of the
+/// tables: after a local update (`Adjacency_tables::replace_vertex()`, `split_triangle()`)
+/// descriptors and iterators obtained before it are invalid.
+///
+/// `tables()` returns the tables the view looks at. Besides the functions listed below,
+/// `vertices()`, `num_vertices()`, `out_edges()`, `in_edges()` (the out-edges reversed),
+/// `adjacent_vertices()`, `in_degree()`, `degree()` (both equal to `out_degree()`), `source()`,
+/// `target()` and `get()` of the `vertex_index` and `edge_index` maps are found by
+/// argument-dependent lookup.
 class Triangle_adjacency_graph
+  : public internal::Graph_view_base<Triangle_adjacency_graph, internal::Triangle_edge_walker,
+                                     &Adjacency_tables::number_of_triangles>
 {
+  using Base = internal::Graph_view_base<Triangle_adjacency_graph, internal::Triangle_edge_walker,
+                                         &Adjacency_tables::number_of_triangles>;
 public:
-  using size_type = Adjacency_tables::size_type;
-  struct Edge_tag {};
-  using Edge = internal::Graph_edge<Edge_tag>;
-
-  explicit Triangle_adjacency_graph(const Adjacency_tables& tables) : tables_(&tables) {}
-
-  /// the tables the view looks at.
-  const Adjacency_tables& tables() const { return *tables_; }
+  /// \param tables the adjacency tables seen as a graph; they must outlive the view.
+  explicit Triangle_adjacency_graph(const Adjacency_tables& tables) : Base(tables) {}
 
   /// \cond SKIP_IN_MANUAL
-  // Walks the graph edges of one triangle `t`: the partners of its three edges, in the order
-  // (local edge, partner triangle). With `only_larger` only partners larger than `t` are listed
-  // (each undirected edge once, from its smaller triangle).
-  class Edge_walker
-  {
-  public:
-    Edge_walker() = default;
-    // The end position, for any triangle.
-    explicit Edge_walker(size_type t) : t_(t), i_(3) {}
-    Edge_walker(const Adjacency_tables* tables, size_type t, bool only_larger)
-      : tables_(tables), t_(t), i_(0), only_larger_(only_larger)
-    { settle(); }
-
-    bool at_end() const { return i_ == 3; }
-    size_type triangle() const { return t_; }
-    size_type partner() const { return p_ != nullptr ? *p_ : tables_->neighbor(t_, i_); }
-
-    Edge edge() const
-    {
-      const size_type u = partner();
-      const std::size_t n = tables_->number_of_triangles();
-      if(p_ == nullptr) {   // manifold
-        if(t_ < u) return Edge(t_, u, 3 * std::size_t(t_) + std::size_t(i_));
-        const int j = tables_->edge_index(u, tables_->vertex(t_, i_), tables_->vertex(t_, (i_ + 1) % 3));
-        return Edge(t_, u, 3 * std::size_t(u) + std::size_t(j));
-      }
-      if(t_ < u)
-        return Edge(t_, u, 3 * std::size_t(t_) + std::size_t(i_) + 3 * n * std::size_t(rank_ - rank_t_ - 1));
-      const int j = tables_->edge_index(u, tables_->vertex(t_, i_), tables_->vertex(t_, (i_ + 1) % 3));
-      return Edge(t_, u, 3 * std::size_t(u) + std::size_t(j) + 3 * n * std::size_t(rank_t_ - rank_ - 1));
-    }
-
-    void increment()
-    {
-      if(p_ != nullptr) { ++rank_; ++p_; }
-      else ++i_;
-      settle();
-    }
-
-    friend bool operator==(const Edge_walker& a, const Edge_walker& b)
-    { return a.t_ == b.t_ && a.i_ == b.i_ && a.p_ == b.p_; }
-
-  private:
-    // Moves to the first valid position at or after the current one.
-    void settle()
-    {
-      while(i_ < 3) {
-        if(p_ == nullptr) {
-          const size_type u = tables_->neighbor(t_, i_);
-          if(u == Adjacency_tables::border_edge) { ++i_; continue; }
-          if(u != Adjacency_tables::non_manifold_edge) {
-            if(!only_larger_ || u > t_) return;
-            ++i_;
-            continue;
-          }
-          // A non-manifold edge: walk the triangles of its first vertex that contain the second.
-          const Adjacency_tables::Id_range around = tables_->triangles_around_vertex(tables_->vertex(t_, i_));
-          p_ = around.begin();
-          pe_ = around.end();
-          b_ = tables_->vertex(t_, (i_ + 1) % 3);
-          rank_ = 0;
-          rank_t_ = 0;
-          for(const size_type* q = p_; *q != t_; ++q)
-            if(tables_->local_index(*q, b_) >= 0) ++rank_t_;
-        }
-        for(; p_ != pe_; ++p_) {
-          const size_type u = *p_;
-          if(tables_->local_index(u, b_) < 0) continue;
-          if(u != t_ && (!only_larger_ || u > t_)) return;
-          ++rank_;
-        }
-        p_ = pe_ = nullptr;
-        ++i_;
-      }
-    }
-
-    const Adjacency_tables* tables_ = nullptr;
-    size_type t_ = 0;
-    int i_ = 3;
-    bool only_larger_ = false;
-    const size_type* p_ = nullptr;   // non-null while walking the triangles of a non-manifold edge
-    const size_type* pe_ = nullptr;
-    size_type b_ = 0;                // the second vertex of that edge
-    size_type rank_ = 0;             // rank of *p_ among the triangles of that edge
-    size_type rank_t_ = 0;           // rank of t_ among them
-  };
-
-  // Out-edges (or in-edges when `Reversed`) of one triangle.
-  template <bool Reversed>
-  class Incident_edge_iterator
-    : public boost::iterator_facade<Incident_edge_iterator<Reversed>, Edge, boost::forward_traversal_tag, Edge>
-  {
-  public:
-    Incident_edge_iterator() = default;
-    explicit Incident_edge_iterator(const Edge_walker& w) : w_(w) {}
-  private:
-    friend class boost::iterator_core_access;
-    Edge dereference() const
-    {
-      Edge e = w_.edge();
-      if(Reversed) std::swap(e.source, e.target);
-      return e;
-    }
-    void increment() { w_.increment(); }
-    bool equal(const Incident_edge_iterator& o) const { return w_ == o.w_; }
-    Edge_walker w_;
-  };
-
-  class Adjacency_iterator
-    : public boost::iterator_facade<Adjacency_iterator, size_type, boost::forward_traversal_tag, size_type>
-  {
-  public:
-    Adjacency_iterator() = default;
-    explicit Adjacency_iterator(const Edge_walker& w) : w_(w) {}
-  private:
-    friend class boost::iterator_core_access;
-    size_type dereference() const { return w_.partner(); }
-    void increment() { w_.increment(); }
-    bool equal(const Adjacency_iterator& o) const { return w_ == o.w_; }
-    Edge_walker w_;
-  };
+  using edge_parallel_category = boost::allow_parallel_edge_tag;
 
   // Every undirected edge once, from its smaller triangle, by increasing triangle.
   class Edge_iterator
@@ -215,80 +200,17 @@ public:
     Edge_walker w_;
   };
   /// \endcond
-
-private:
-  const Adjacency_tables* tables_;
 };
 
 /// \relates Triangle_adjacency_graph
 /// returns the triangle adjacency graph of `tables` (a view; `tables` must outlive it).
+/// \param tables the adjacency tables seen as a graph
 inline Triangle_adjacency_graph triangle_adjacency_graph(const Adjacency_tables& tables)
 { return Triangle_adjacency_graph(tables); }
 
 } // namespace Soup_topology
 
-namespace boost {
-
-template <>
-struct graph_traits<Soup_topology::Triangle_adjacency_graph>
-{
-private:
-  using G = Soup_topology::Triangle_adjacency_graph;
-public:
-  struct traversal_category
-    : public virtual boost::bidirectional_graph_tag,
-      public virtual boost::adjacency_graph_tag,
-      public virtual boost::vertex_list_graph_tag,
-      public virtual boost::edge_list_graph_tag
-  {};
-  using vertex_descriptor = G::size_type;
-  using edge_descriptor = G::Edge;
-  using directed_category = boost::undirected_tag;
-  using edge_parallel_category = boost::allow_parallel_edge_tag;
-
-  using vertices_size_type = std::size_t;
-  using edges_size_type = std::size_t;
-  using degree_size_type = std::size_t;
-
-  using vertex_iterator = boost::counting_iterator<G::size_type>;
-  using out_edge_iterator = G::Incident_edge_iterator<false>;
-  using in_edge_iterator = G::Incident_edge_iterator<true>;
-  using adjacency_iterator = G::Adjacency_iterator;
-  using edge_iterator = G::Edge_iterator;
-
-  static vertex_descriptor null_vertex() { return Soup_topology::Adjacency_tables::border_edge; }
-};
-
-template <>
-struct graph_traits<const Soup_topology::Triangle_adjacency_graph>
-  : public graph_traits<Soup_topology::Triangle_adjacency_graph>
-{};
-
-template <>
-struct property_map<Soup_topology::Triangle_adjacency_graph, boost::vertex_index_t>
-{
-  using type = boost::typed_identity_property_map<Soup_topology::Triangle_adjacency_graph::size_type>;
-  using const_type = type;
-};
-
-template <>
-struct property_map<Soup_topology::Triangle_adjacency_graph, boost::edge_index_t>
-{
-  using type = Soup_topology::internal::Graph_edge_index_map<Soup_topology::Triangle_adjacency_graph::Edge>;
-  using const_type = type;
-};
-
-template <>
-struct property_map<const Soup_topology::Triangle_adjacency_graph, boost::vertex_index_t>
-  : public property_map<Soup_topology::Triangle_adjacency_graph, boost::vertex_index_t>
-{};
-
-template <>
-struct property_map<const Soup_topology::Triangle_adjacency_graph, boost::edge_index_t>
-  : public property_map<Soup_topology::Triangle_adjacency_graph, boost::edge_index_t>
-{};
-
-} // namespace boost
+SOUP_TOPOLOGY_GRAPH_VIEW_TRAITS(Soup_topology::Triangle_adjacency_graph)
 
 namespace Soup_topology {
 
@@ -296,50 +218,10 @@ namespace Soup_topology {
 /// @{
 
 /// \relates Triangle_adjacency_graph
-inline std::pair<boost::graph_traits<Triangle_adjacency_graph>::vertex_iterator,
-                 boost::graph_traits<Triangle_adjacency_graph>::vertex_iterator>
-vertices(const Triangle_adjacency_graph& g)
-{
-  using It = boost::graph_traits<Triangle_adjacency_graph>::vertex_iterator;
-  return {It(0), It(static_cast<Triangle_adjacency_graph::size_type>(g.tables().number_of_triangles()))};
-}
-
-/// \relates Triangle_adjacency_graph
-inline std::size_t num_vertices(const Triangle_adjacency_graph& g) { return g.tables().number_of_triangles(); }
-
-/// \relates Triangle_adjacency_graph
-inline std::pair<Triangle_adjacency_graph::Incident_edge_iterator<false>,
-                 Triangle_adjacency_graph::Incident_edge_iterator<false>>
-out_edges(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
-{
-  using It = Triangle_adjacency_graph::Incident_edge_iterator<false>;
-  using W = Triangle_adjacency_graph::Edge_walker;
-  return {It(W(&g.tables(), t, false)), It(W(t))};
-}
-
-/// \relates Triangle_adjacency_graph
-/// the edges of `t` with `t` as their target.
-inline std::pair<Triangle_adjacency_graph::Incident_edge_iterator<true>,
-                 Triangle_adjacency_graph::Incident_edge_iterator<true>>
-in_edges(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
-{
-  using It = Triangle_adjacency_graph::Incident_edge_iterator<true>;
-  using W = Triangle_adjacency_graph::Edge_walker;
-  return {It(W(&g.tables(), t, false)), It(W(t))};
-}
-
-/// \relates Triangle_adjacency_graph
-inline std::pair<Triangle_adjacency_graph::Adjacency_iterator, Triangle_adjacency_graph::Adjacency_iterator>
-adjacent_vertices(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
-{
-  using It = Triangle_adjacency_graph::Adjacency_iterator;
-  using W = Triangle_adjacency_graph::Edge_walker;
-  return {It(W(&g.tables(), t, false)), It(W(t))};
-}
-
-/// \relates Triangle_adjacency_graph
 /// the number of graph edges of `t`: one per manifold edge, `k - 1` per edge shared by `k >= 3`
 /// triangles, none per border edge.
+/// \param t a triangle (a vertex of the graph)
+/// \param g the graph
 inline std::size_t out_degree(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -348,34 +230,16 @@ inline std::size_t out_degree(Triangle_adjacency_graph::size_type t, const Trian
     const Adjacency_tables::size_type u = a.neighbor(t, i);
     if(u == Adjacency_tables::border_edge) continue;
     if(u != Adjacency_tables::non_manifold_edge) { ++d; continue; }
-    const Adjacency_tables::size_type b = a.vertex(t, (i + 1) % 3);
-    for(Adjacency_tables::size_type w : a.triangles_around_vertex(a.vertex(t, i)))
-      if(w != t && a.local_index(w, b) >= 0) ++d;
+    const auto ends = internal::edge_ends_fewer_triangles_first(a, t, i);
+    for(Adjacency_tables::size_type w : a.triangles_around_vertex(ends.first))
+      if(w != t && a.local_index(w, ends.second) >= 0) ++d;
   }
   return d;
 }
 
 /// \relates Triangle_adjacency_graph
-inline std::size_t in_degree(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
-{ return out_degree(t, g); }
-
-/// \relates Triangle_adjacency_graph
-/// the number of incident edges (undirected graph: equal to `out_degree()`).
-inline std::size_t degree(Triangle_adjacency_graph::size_type t, const Triangle_adjacency_graph& g)
-{ return out_degree(t, g); }
-
-/// \relates Triangle_adjacency_graph
-inline Triangle_adjacency_graph::size_type source(const Triangle_adjacency_graph::Edge& e,
-                                                  const Triangle_adjacency_graph&)
-{ return e.source; }
-
-/// \relates Triangle_adjacency_graph
-inline Triangle_adjacency_graph::size_type target(const Triangle_adjacency_graph::Edge& e,
-                                                  const Triangle_adjacency_graph&)
-{ return e.target; }
-
-/// \relates Triangle_adjacency_graph
 /// every undirected edge once, oriented from its smaller triangle to its larger one.
+/// \param g the graph
 inline std::pair<Triangle_adjacency_graph::Edge_iterator, Triangle_adjacency_graph::Edge_iterator>
 edges(const Triangle_adjacency_graph& g)
 {
@@ -386,6 +250,7 @@ edges(const Triangle_adjacency_graph& g)
 
 /// \relates Triangle_adjacency_graph
 /// the number of graph edges (linear time).
+/// \param g the graph
 inline std::size_t num_edges(const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -396,11 +261,11 @@ inline std::size_t num_edges(const Triangle_adjacency_graph& g)
       if(u == Adjacency_tables::border_edge) continue;
       if(u != Adjacency_tables::non_manifold_edge) { count += (u > t) ? 1 : 0; continue; }
       // Counted once, from the smallest triangle of the edge: k (k-1) / 2 graph edges.
-      const Adjacency_tables::size_type b = a.vertex(t, (i + 1) % 3);
+      const auto ends = internal::edge_ends_fewer_triangles_first(a, t, i);
       std::size_t k = 0;
       bool smallest = true;
-      for(Adjacency_tables::size_type w : a.triangles_around_vertex(a.vertex(t, i)))
-        if(a.local_index(w, b) >= 0) { if(w < t) { smallest = false; break; } ++k; }
+      for(Adjacency_tables::size_type w : a.triangles_around_vertex(ends.first))
+        if(a.local_index(w, ends.second) >= 0) { if(w < t) { smallest = false; break; } ++k; }
       if(smallest) count += k * (k - 1) / 2;
     }
   return count;
@@ -409,6 +274,7 @@ inline std::size_t num_edges(const Triangle_adjacency_graph& g)
 /// \relates Triangle_adjacency_graph
 /// one past the largest edge index: `3 n max(1, k - 1)` with `n` triangles and `k` the largest
 /// number of triangles sharing one edge (`3 n` for a manifold soup). Linear time.
+/// \param g the graph
 inline std::size_t edge_index_upper_bound(const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -424,6 +290,8 @@ inline std::size_t edge_index_upper_bound(const Triangle_adjacency_graph& g)
 
 /// \relates Triangle_adjacency_graph
 /// `true` if `e` crosses an edge shared by exactly two triangles.
+/// \param e an edge of `g`
+/// \param g the graph
 inline bool is_manifold_edge(const Triangle_adjacency_graph::Edge& e, const Triangle_adjacency_graph& g)
 {
   const Adjacency_tables& a = g.tables();
@@ -434,31 +302,14 @@ inline bool is_manifold_edge(const Triangle_adjacency_graph::Edge& e, const Tria
 /// \relates Triangle_adjacency_graph
 /// the triangle index and the local edge index (in the numbering of `Adjacency_tables`) of edge
 /// `e` in its smaller triangle.
+/// \param e an edge of `g`
+/// \param g the graph
 inline Adjacency_tables::Edge halfedge_in_smaller_triangle(const Triangle_adjacency_graph::Edge& e,
                                                            const Triangle_adjacency_graph& g)
 {
   const std::size_t h = e.id % (3 * g.tables().number_of_triangles());
   return Adjacency_tables::Edge{static_cast<Adjacency_tables::size_type>(h / 3), int(h % 3)};
 }
-
-/// \relates Triangle_adjacency_graph
-inline boost::typed_identity_property_map<Triangle_adjacency_graph::size_type>
-get(boost::vertex_index_t, const Triangle_adjacency_graph&)
-{ return {}; }
-
-/// \relates Triangle_adjacency_graph
-inline Triangle_adjacency_graph::size_type get(boost::vertex_index_t, const Triangle_adjacency_graph&,
-                                               Triangle_adjacency_graph::size_type t)
-{ return t; }
-
-/// \relates Triangle_adjacency_graph
-inline internal::Graph_edge_index_map<Triangle_adjacency_graph::Edge>
-get(boost::edge_index_t, const Triangle_adjacency_graph&)
-{ return {}; }
-
-/// \relates Triangle_adjacency_graph
-inline std::size_t get(boost::edge_index_t, const Triangle_adjacency_graph&, const Triangle_adjacency_graph::Edge& e)
-{ return e.id; }
 
 /// @}
 

@@ -127,11 +127,8 @@ Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
   rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
   internal::Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
-  const auto counts = orienter.run();
   Orientation_report report;
-  report.duplicate_triangles = counts.duplicate_triangles;
-  report.orientation_flips = counts.orientation_flips;
-  report.duplicated_points = counts.duplicated_points;
+  internal::copy_orientation_counts(orienter.run(), report);
   return report;
 }
 

@@ -196,6 +196,10 @@ VRML_read_result read_VRML(std::istream& is, const std::string& name, PointRange
 ///         (`CGAL::Point_3` of any kernel)
 /// \tparam TriangleRange a back-insertion sequence of faces of 3 indices
 ///         (`std::array<std::size_t,3>`, `std::vector<int>`, ...)
+/// \param is the stream the VRML text is read from (to its end)
+/// \param points the points the points of the file are appended to
+/// \param triangles the triangles the triangles of the file are appended to
+/// \param options how polygons, mirroring transforms and the instance budgets are handled
 /// \return what was read: the shape of each triangle and the counts of the file header.
 /// \throws Read_error on malformed input; `points` and `triangles` are then unchanged.
 template <typename PointRange, typename TriangleRange>
@@ -206,8 +210,12 @@ VRML_read_result read_VRML(std::istream& is, PointRange& points, TriangleRange& 
 }
 
 /// \ingroup PkgSoupTopologyIO
-/// reads the VRML 2.0 file `filename`, see above. \throws Read_error also when the file cannot
-/// be opened or read.
+/// reads the VRML 2.0 file `filename`, see above.
+/// \param filename the name of the file, which also starts the messages of `Read_error`
+/// \param points the points the points of the file are appended to
+/// \param triangles the triangles the triangles of the file are appended to
+/// \param options how polygons, mirroring transforms and the instance budgets are handled
+/// \throws Read_error also when the file cannot be opened or read.
 template <typename PointRange, typename TriangleRange>
 VRML_read_result read_VRML(const std::string& filename, PointRange& points, TriangleRange& triangles,
                            const VRML_read_options& options = VRML_read_options())

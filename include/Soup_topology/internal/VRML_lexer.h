@@ -270,38 +270,48 @@ protected:
            line_);
   }
 
+  // reads the bracketed value `[ item ... ]` of a multiple-valued field if one starts here:
+  // `read_item(open_line)` reads each item, `open_line` being the line of the `[`. Returns that
+  // line, or 0 (and reads nothing) when the value is not bracketed.
+  template <typename ItemReader>
+  std::size_t read_bracketed_list(const char* what, const ItemReader& read_item)
+  {
+    skip_space();
+    if(p_ == end_ || *p_ != '[')
+      return 0;
+    const std::size_t open_line = line_;
+    ++p_;
+    for(;;)
+    {
+      skip_space();
+      if(p_ == end_)
+        fail_eof(what, open_line);
+      if(*p_ == ']')
+      {
+        ++p_;
+        return open_line;
+      }
+      read_item(open_line);
+    }
+  }
+
   // reads an MFFloat-like field of `tuple`-sized values: `[ a b c, ... ]` or a single value
   void read_mf_double(std::vector<double>& out, std::size_t tuple, const char* what)
   {
-    skip_space();
-    if(p_ != end_ && *p_ == '[')
-    {
-      const std::size_t open_line = line_;
-      ++p_;
-      const std::size_t start = out.size();
-      for(;;)
-      {
-        skip_space();
-        if(p_ == end_)
-          fail_eof(what, open_line);
-        if(*p_ == ']')
-        {
-          ++p_;
-          break;
-        }
-        check_list_item(open_line);
-        out.push_back(read_double(what));
-      }
-      if((out.size() - start) % tuple != 0)
-        fail(std::string(what) + ": " + std::to_string(out.size() - start)
-               + " numbers, not a multiple of " + std::to_string(tuple),
-             open_line);
-    }
-    else
+    const std::size_t start = out.size();
+    const std::size_t open_line = read_bracketed_list(what, [&](std::size_t list_line) {
+      check_list_item(list_line);
+      out.push_back(read_double(what));
+    });
+    if(open_line == 0)
     {
       for(std::size_t i = 0; i < tuple; ++i)
         out.push_back(read_double(what));
     }
+    else if((out.size() - start) % tuple != 0)
+      fail(std::string(what) + ": " + std::to_string(out.size() - start)
+             + " numbers, not a multiple of " + std::to_string(tuple),
+           open_line);
   }
 
   void read_sf_doubles(double* out, std::size_t n, const char* what)

@@ -251,31 +251,16 @@ private:
 
   void read_coord_index(Node& node)
   {
-    skip_space();
     auto note_line = [&]() {
       if(node.index_lines.empty() || node.index_lines.back().second != line_)
         node.index_lines.emplace_back(node.coord_index.size(), line_);
     };
-    if(p_ != end_ && *p_ == '[')
-    {
-      const std::size_t open_line = line_;
-      ++p_;
-      for(;;)
-      {
-        skip_space();
-        if(p_ == end_)
-          fail_eof("coordIndex", open_line);
-        if(*p_ == ']')
-        {
-          ++p_;
-          break;
-        }
-        check_list_item(open_line);
-        note_line();
-        node.coord_index.push_back(read_int32("coordIndex"));
-      }
-    }
-    else
+    const std::size_t open_line = read_bracketed_list("coordIndex", [&](std::size_t list_line) {
+      check_list_item(list_line);
+      note_line();
+      node.coord_index.push_back(read_int32("coordIndex"));
+    });
+    if(open_line == 0)
     {
       note_line();
       node.coord_index.push_back(read_int32("coordIndex"));
@@ -468,34 +453,21 @@ private:
   // MFNode `children`: `[ node ... ]` or one node
   void parse_children(std::size_t id)
   {
-    skip_space();
-    if(p_ != end_ && *p_ == '[')
-    {
-      const std::size_t open_line = line_;
-      ++p_;
-      for(;;)
-      {
-        skip_space();
-        if(p_ == end_)
-          fail_eof("children", open_line);
-        if(*p_ == ']')
-        {
-          ++p_;
-          return;
-        }
-        if(*p_ == '[' || *p_ == '{' || *p_ == '}' || *p_ == '"')
-          fail("unexpected " + quote_here() + " in children (opened at line "
-                 + std::to_string(open_line) + ")",
-               line_);
-        const std::size_t line = line_;
-        const std::string_view word = read_word("a node");
-        if(skip_statement(word))
-          continue;
-        const std::size_t child = parse_node_statement(word, line, true);
-        if(child != npos)
-          nodes_[id].children.push_back(child);
-      }
-    }
+    const std::size_t open_line = read_bracketed_list("children", [&](std::size_t list_line) {
+      if(*p_ == '[' || *p_ == '{' || *p_ == '}' || *p_ == '"')
+        fail("unexpected " + quote_here() + " in children (opened at line "
+               + std::to_string(list_line) + ")",
+             line_);
+      const std::size_t line = line_;
+      const std::string_view word = read_word("a node");
+      if(skip_statement(word))
+        return;
+      const std::size_t child = parse_node_statement(word, line, true);
+      if(child != npos)
+        nodes_[id].children.push_back(child);
+    });
+    if(open_line != 0)
+      return;
     const std::size_t child = parse_node_statement(true, "a node");
     if(child != npos)
       nodes_[id].children.push_back(child);

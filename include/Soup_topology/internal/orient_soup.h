@@ -513,6 +513,17 @@ private:
   std::vector<std::array<double, 3>> xyz_;
 };
 
+// Copies what an orientation changed (`duplicate_triangles`, `orientation_flips` and
+// `duplicated_points`, the members of `Soup_orienter::Counts`) from `counts` into `report`,
+// whose other members are left as they are.
+template <class Report, class Counts>
+void copy_orientation_counts(const Counts& counts, Report& report)
+{
+  report.duplicate_triangles = counts.duplicate_triangles;
+  report.orientation_flips = counts.orientation_flips;
+  report.duplicated_points = counts.duplicated_points;
+}
+
 } // namespace internal
 } // namespace Soup_topology
 
