@@ -9,7 +9,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Octree_morton.h>
 #include <Soup_topology/internal/octree_distance_filters.h>
-#include <Soup_topology/internal/octree_parameters.h>
+#include <Soup_topology/parameters.h>
 
 #include <CGAL/Iterator_range.h>
 #include <CGAL/Named_function_parameters.h>
@@ -152,10 +152,10 @@ public:
     using CGAL::parameters::get_parameter;
     const PointMap pm =
       choose_parameter(get_parameter(np, CGAL::internal_np::point_map), PointMap());
-    const std::size_t capacity =
-      choose_parameter(get_parameter(np, internal_np::bucket_capacity), default_bucket_capacity);
-    const std::size_t depth =
-      choose_parameter(get_parameter(np, internal_np::maximum_depth), default_maximum_depth);
+    const std::size_t capacity = static_cast<std::size_t>(
+      choose_parameter(get_parameter(np, internal_np::bucket_capacity), default_bucket_capacity));
+    const std::size_t depth = static_cast<std::size_t>(
+      choose_parameter(get_parameter(np, internal_np::maximum_depth), default_maximum_depth));
     strategy_ = choose_parameter(get_parameter(np, internal_np::segment_query_strategy),
                                  Segment_query_strategy::INDEX_SPACE_BOX);
     build(points, pm, capacity, depth);

@@ -20,8 +20,6 @@
 
 namespace Soup_topology {
 
-// moved to parameters.h at merge
-SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(fixed_vertices_t, fixed_vertices)
 
 /// \ingroup PkgSoupTopologyWelding
 /// \brief why a merge was refused.

@@ -34,10 +34,6 @@
 namespace Soup_topology {
 namespace internal {
 
-/// a grid cell (of diagonal the tolerance) holding more candidates than this makes
-/// `snap_vertices()` build the tolerance graph's components on the grid (same result, no pair list).
-constexpr std::size_t dense_cell_size = 64;
-
 /// `true` if moving the corners of triangle (a, b, c) to (na, nb, nc) keeps it: it does not
 /// become degenerate (unless it was) and its normal is not reversed. Otherwise `why` says which.
 template <class Kernel, class Point>

@@ -87,8 +87,6 @@ private:
   using Tree_traits = Kernel_with_near_end_shortcut<Kernel>;
   using Tree = Octree<Tree_traits>;
   static constexpr std::uint32_t not_border = static_cast<std::uint32_t>(-1);
-  // a grid cell holding more border vertices than this makes the set dense (the weld's threshold)
-  static constexpr std::size_t dense_cell_size = 64;
 
   const Point& point(size_type v) const { return points_[v]; }
 

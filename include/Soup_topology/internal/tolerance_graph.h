@@ -25,6 +25,11 @@
 namespace Soup_topology {
 namespace internal {
 
+/// a grid cell (of diagonal the tolerance) holding more candidates than this makes
+/// `snap_vertices()` build the tolerance graph's components on the grid (same result, no pair
+/// list), and `split_t_junctions()` skip the cells within the tolerance of an edge's end point.
+constexpr std::size_t dense_cell_size = 64;
+
 /// union-find over 32-bit ids; the root of a set is its smallest id, so the sets (and their
 /// roots) do not depend on the order of the unions.
 class Union_find
