@@ -25,12 +25,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -1081,6 +1084,77 @@ TEST(ReadTriangleSoup, Issue20PolygonsAreEarClipped)
       area += z / 2;
     }
     EXPECT_DOUBLE_EQ(area, 1.0) << format;
+  }
+}
+
+// Issue 13: a binary STL is welded while it is decoded. The result is that of the explicit
+// triangles welded by index_triangles(), on real files and on their facets shuffled.
+TEST(ReadTriangleSoup, Issue13BinarySTLWeldedWhileReadEqualsIndexTriangles)
+{
+  for(const std::string file : {"cgal_repair/pig.stl.xz", "real_defects/openscad/bad-stl-wing.stl.xz",
+                                "real_defects/openscad/bad-stl-tardis.stl"}) {
+    SCOPED_TRACE(file);
+    const std::string bytes = ST::IO::read_file_contents(soup_test::data_file(file));
+    std::vector<std::array<Point, 3>> explicit_triangles;
+    ST::IO::read_STL_triangles(bytes, explicit_triangles);
+    // The same facets as a binary STL, in their order and shuffled.
+    std::vector<std::array<Point, 3>> shuffled = explicit_triangles;
+    std::mt19937 rng(13);
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    for(const auto* facets : {&explicit_triangles, &shuffled}) {
+      std::string stl(80, ' ');
+      const std::uint32_t n = static_cast<std::uint32_t>(facets->size());
+      stl.append(reinterpret_cast<const char*>(&n), 4);
+      for(const auto& t : *facets) {
+        float c[12] = {0, 0, 0};
+        for(std::size_t k = 0; k < 3; ++k)
+          for(std::size_t d = 0; d < 3; ++d) c[3 + 3 * k + d] = static_cast<float>(CGAL::to_double(t[k][static_cast<int>(d)]));
+        stl.append(reinterpret_cast<const char*>(c), sizeof c);
+        stl.append(2, '\0');
+      }
+      std::vector<std::array<Point, 3>> decoded;
+      ST::IO::read_STL_triangles(stl, decoded);
+      std::vector<Point> expected_points;
+      std::vector<Triangle> expected_triangles;
+      const ST::Index_report ir = ST::index_triangles(decoded, expected_points, expected_triangles);
+      std::vector<Point> points;
+      std::vector<Triangle> triangles;
+      const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(stl.data(), stl.size(), "stl", points, triangles);
+      EXPECT_EQ(points, expected_points);
+      EXPECT_EQ(triangles, expected_triangles);
+      EXPECT_EQ(r.input_triangles, ir.input_triangles);
+      EXPECT_EQ(r.input_vertices, ir.input_corners);
+      EXPECT_EQ(r.exact_duplicates, ir.input_corners - ir.vertices);
+      EXPECT_EQ(r.collapsed_triangles, ir.collapsed_triangles);
+    }
+  }
+}
+
+// Issue 13: the text readers parse numbers with std::from_chars; the accepted texts and their
+// values are those of strtod / strtof.
+TEST(ReadTriangleSoup, Issue13NumbersParseAsTheCLibraryParsesThem)
+{
+  for(const std::string t : {"0", "-0", "1", "+1.5", "1e308", "1e309", "-1e400", "1e-320", "4.9e-324", "2e-400",
+                             "0.1", "3.14159265358979323846", "0x1p3", "inf", "-Infinity", "nan", "1.", ".5", "1e",
+                             "e5", "--1", "1.5x", "", " 1", "1 ", "123456789012345678901234567890",
+                             "0.30000000000000004", "1.17549435e-38", "3.4028236e38"}) {
+    SCOPED_TRACE("'" + t + "'");
+    double x = -7;
+    const bool ok = ST::internal::parse_double(t.data(), t.data() + t.size(), x);
+    char* end = nullptr;
+    const double expected = std::strtod(t.c_str(), &end);
+    const bool expected_ok = !t.empty() && end == t.c_str() + t.size() && static_cast<unsigned char>(t[0]) > ' ';
+    EXPECT_EQ(ok, expected_ok);
+    if(ok && expected_ok && !std::isnan(expected)) {
+      EXPECT_EQ(std::memcmp(&x, &expected, sizeof x), 0) << x;
+    }
+    float f = -7;
+    const bool ok_float = ST::internal::parse_float(t.data(), t.data() + t.size(), f);
+    const float expected_float = std::strtof(t.c_str(), &end);
+    EXPECT_EQ(ok_float, expected_ok);
+    if(ok_float && !std::isnan(expected_float)) {
+      EXPECT_EQ(std::memcmp(&f, &expected_float, sizeof f), 0) << f;
+    }
   }
 }
 

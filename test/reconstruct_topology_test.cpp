@@ -846,3 +846,108 @@ TEST(SplitTJunctions, SegmentFilterNeverAcceptsAFarPoint)
 }
 
 } // namespace split_filters
+
+namespace issue13 {
+
+using ST::Reconstruction_report;
+
+// Every count of two reports, field by field.
+void expect_same_report(const Reconstruction_report& a, const Reconstruction_report& b)
+{
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.input_points, b.input_points);
+  EXPECT_EQ(a.input_triangles, b.input_triangles);
+  EXPECT_EQ(a.exact_duplicates, b.exact_duplicates);
+  EXPECT_EQ(a.collapsed_triangles, b.collapsed_triangles);
+  EXPECT_EQ(a.rounds, b.rounds);
+  EXPECT_EQ(a.snapped_vertices, b.snapped_vertices);
+  EXPECT_EQ(a.clusters, b.clusters);
+  EXPECT_EQ(a.refused_welds(), b.refused_welds());
+  EXPECT_EQ(a.ambiguous_sites, b.ambiguous_sites);
+  EXPECT_EQ(a.short_edges, b.short_edges);
+  EXPECT_EQ(a.t_junctions, b.t_junctions);
+  EXPECT_EQ(a.split_triangles, b.split_triangles);
+  EXPECT_EQ(a.refused_splits, b.refused_splits);
+  EXPECT_EQ(a.ambiguous_t_junctions, b.ambiguous_t_junctions);
+  EXPECT_EQ(a.border_edges_before, b.border_edges_before);
+  EXPECT_EQ(a.border_edges_after, b.border_edges_after);
+  EXPECT_EQ(a.non_manifold_edges_before, b.non_manifold_edges_before);
+  EXPECT_EQ(a.non_manifold_edges_after, b.non_manifold_edges_after);
+  EXPECT_EQ(a.non_manifold_vertices_after, b.non_manifold_vertices_after);
+  EXPECT_EQ(a.components_before, b.components_before);
+  EXPECT_EQ(a.components, b.components);
+  EXPECT_EQ(a.removed_points, b.removed_points);
+  EXPECT_EQ(a.output_points, b.output_points);
+  EXPECT_EQ(a.output_triangles, b.output_triangles);
+  EXPECT_EQ(a.max_displacement, b.max_displacement);
+}
+
+// The triangles as corner coordinates, each rotated to start at its smallest corner.
+std::multiset<std::array<std::array<double, 3>, 3>> triangles_by_coordinates(const std::vector<Point>& pts,
+                                                                           const std::vector<Triangle>& tris)
+{
+  std::multiset<std::array<std::array<double, 3>, 3>> out;
+  for(const Triangle& q : tris) {
+    std::array<std::array<double, 3>, 3> c;
+    for(std::size_t k = 0; k < 3; ++k) c[k] = {pts[q[k]].x(), pts[q[k]].y(), pts[q[k]].z()};
+    const std::size_t s = static_cast<std::size_t>(std::min_element(c.begin(), c.end()) - c.begin());
+    out.insert({c[s], c[(s + 1) % 3], c[(s + 2) % 3]});
+  }
+  return out;
+}
+
+// The entry point that trusts a soup read welded (the command line's) gives the points,
+// triangles and report of the public function, which welds again, on real meshes.
+TEST(ReconstructTopology, Issue13WeldedSoupEntryEqualsThePublicFunction)
+{
+  const std::vector<std::pair<std::string, double>> inputs = {
+    {"cgal_repair/pig.stl.xz", 0.3},       {"cgal_repair/pig.stl.xz", 0.0},
+    {"cad/ALSTOM_TEST4.off", 1e-3},        {"clean/fandisk.off.xz", 1e-4},
+    {"real_defects/openscad/bad-stl-tardis.stl", 1e-4}, {"cgal_repair/data_stitching/pinched.off", 1e-2}};
+  for(const auto& [file, tolerance] : inputs) {
+    SCOPED_TRACE(file + " tolerance " + std::to_string(tolerance));
+    auto [points, triangles] = load<Point>(file);
+    auto p2 = points;
+    auto t2 = triangles;
+    const auto np = CGAL::parameters::snapping_tolerance(tolerance);
+    const Reconstruction_report welded_twice = ST::reconstruct_topology(points, triangles, np);
+    const Reconstruction_report welded_once = ST::internal::reconstruct_exactly_welded_soup(p2, t2, np);
+    EXPECT_EQ(points, p2);
+    EXPECT_EQ(triangles, t2);
+    expect_same_report(welded_twice, welded_once);
+  }
+}
+
+// An exploded, jittered soup and the same soup with its triangles shuffled and their corners
+// rotated: read (index_triangles) and repaired, the same surface and the same counts.
+TEST(ReconstructTopology, Issue13ShuffledExplodedSoupGivesTheSameSurface)
+{
+  auto [points, triangles] = load<Point>("clean/bunny00.off.xz");
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  std::vector<std::array<Point, 3>> exploded = soup_test::explode(points, triangles);
+  std::mt19937_64 rng(13);
+  const double j = 1e-7 * diag;
+  std::uniform_real_distribution<double> d(-j, j);
+  for(auto& t : exploded)
+    for(Point& q : t) q = Point(q.x() + d(rng), q.y() + d(rng), q.z() + d(rng));
+  std::vector<std::array<Point, 3>> shuffled = exploded;
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  for(auto& t : shuffled) std::rotate(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(rng() % 3), t.end());
+
+  const auto np = CGAL::parameters::snapping_tolerance(1e-5 * diag);
+  std::vector<Point> p1, p2;
+  std::vector<Triangle> t1, t2;
+  ST::index_triangles(exploded, p1, t1);
+  ST::index_triangles(shuffled, p2, t2);
+  const Reconstruction_report r1 = ST::internal::reconstruct_exactly_welded_soup(p1, t1, np);
+  const Reconstruction_report r2 = ST::internal::reconstruct_exactly_welded_soup(p2, t2, np);
+  EXPECT_TRUE(r1.closed());
+  EXPECT_EQ(r1.output_triangles, triangles.size());
+  EXPECT_EQ(r1.snapped_vertices, r2.snapped_vertices);
+  EXPECT_EQ(r1.border_edges_after, r2.border_edges_after);
+  EXPECT_EQ(r1.output_points, r2.output_points);
+  EXPECT_EQ(r1.output_triangles, r2.output_triangles);
+  EXPECT_EQ(triangles_by_coordinates(p1, t1), triangles_by_coordinates(p2, t2));
+}
+
+} // namespace issue13

@@ -278,74 +278,68 @@ std::size_t count_self_intersecting_pairs(const std::vector<Point>& points, cons
   return pairs;
 }
 
-int run_repair(const std::vector<std::string>& args)
+struct Repair_options
 {
-  std::string in, out, report_file;
+  std::string in, out, report_file, out_format;
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
+};
+
+Repair_options parse_repair_arguments(const std::vector<std::string>& args)
+{
+  Repair_options o;
   for(std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
       if(i + 1 >= args.size()) throw Usage_error("repair: " + a + " needs a value");
       return args[++i];
     };
-    if(a == "-o" || a == "--output") out = value();
-    else if(a == "--tolerance") tolerance = parse_number(a, value());
-    else if(a == "--relative-tolerance") relative = parse_number(a, value());
-    else if(a == "--report") report_file = value();
-    else if(a == "--json") json = true;
-    else if(a == "--check") check = true;
-    else if(a == "--no-t-junctions") split = false;
-    else if(a == "--self-intersections") self_intersections = true;
-    else if(a == "--orientation") orientation_policy = parse_orientation_policy(value());
+    if(a == "-o" || a == "--output") o.out = value();
+    else if(a == "--tolerance") o.tolerance = parse_number(a, value());
+    else if(a == "--relative-tolerance") o.relative = parse_number(a, value());
+    else if(a == "--report") o.report_file = value();
+    else if(a == "--json") o.json = true;
+    else if(a == "--check") o.check = true;
+    else if(a == "--no-t-junctions") o.split = false;
+    else if(a == "--self-intersections") o.self_intersections = true;
+    else if(a == "--orientation") o.orientation_policy = parse_orientation_policy(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
-    else if(in.empty()) in = a;
-    else throw Usage_error("repair: more than one input file ('" + in + "' and '" + a + "')");
+    else if(o.in.empty()) o.in = a;
+    else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
   }
-  if(in.empty()) throw Usage_error("repair: no input file");
-  if(out.empty()) throw Usage_error("repair: no output file (-o OUT)");
-  if(tolerance && relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
-  const std::string out_format = ST::IO::file_extension(out);
-  if(out_format != "off" && out_format != "obj" && out_format != "ply" && out_format != "stl")
-    throw Usage_error("repair: unknown output extension '" + out_format + "' (expected .off, .obj, .ply or .stl)");
-  check_repair_paths(in, out, report_file);
-  tool::install_signal_handlers();
+  if(o.in.empty()) throw Usage_error("repair: no input file");
+  if(o.out.empty()) throw Usage_error("repair: no output file (-o OUT)");
+  if(o.tolerance && o.relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  o.out_format = ST::IO::file_extension(o.out);
+  if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
+    throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
+  return o;
+}
 
-  std::vector<Point> points;
-  std::vector<Triangle> triangles;
-  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(in, points, triangles);
-  Progress progress_on(read.input_triangles > 1000000);
-  progress_on("read " + std::to_string(read.input_triangles) + " triangles");
+// The soup as read is exactly welded already (read_triangle_soup): the pipeline does not weld
+// it a second time.
+ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles)
+{
+  const auto split = ST::parameters::do_split_t_junctions(o.split);
+  if(o.tolerance)
+    return ST::internal::reconstruct_exactly_welded_soup(
+      points, triangles, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
+  if(o.relative)
+    return ST::internal::reconstruct_exactly_welded_soup(
+      points, triangles, ST::parameters::do_split_t_junctions(o.split, ST::parameters::relative_tolerance(*o.relative)));
+  return ST::internal::reconstruct_exactly_welded_soup(points, triangles, split);
+}
 
-  ST::Reconstruction_report r;
-  if(tolerance)
-    r = ST::reconstruct_topology(points, triangles,
-                                 ST::parameters::do_split_t_junctions(split, CGAL::parameters::snapping_tolerance(*tolerance)));
-  else if(relative)
-    r = ST::reconstruct_topology(points, triangles,
-                                 ST::parameters::do_split_t_junctions(split, ST::parameters::relative_tolerance(*relative)));
-  else
-    r = ST::reconstruct_topology(points, triangles, ST::parameters::do_split_t_junctions(split));
-  progress_on("repaired the soup");
-  // The repaired soup, before the separation of what cannot be manifold.
-  const ST::Soup_statistics soup = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
-
-  // What is written: repeated triangles left out, components oriented, non-manifold vertices
-  // and edges separated by duplicated points. The report's statistics describe this soup.
-  const ST::Orientation_report orientation =
-    ST::orient_triangle_soup(points, triangles, ST::parameters::orientation_policy(orientation_policy));
-  const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
-  progress_on("oriented the soup");
-  std::optional<std::size_t> intersecting;
-  if(self_intersections) {
-    intersecting = count_self_intersecting_pairs(points, triangles);
-    progress_on("counted self-intersections");
-  }
-
+// The report of a repair. `r` describes the repaired soup (its final counts are those of the
+// soup before the orientation), `s` the soup written.
+Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& read, const ST::Reconstruction_report& r,
+                     const ST::Orientation_report& orientation, const ST::Soup_statistics& s,
+                     const std::optional<std::size_t>& intersecting)
+{
   Report rep;
-  rep.add_string("input", in);
-  rep.add_string("output", out);
+  rep.add_string("input", o.in);
+  rep.add_string("output", o.out);
   rep.add_string("format", read.format);
   rep.add("input_vertices", read.input_vertices);
   rep.add("input_triangles", read.input_triangles);
@@ -354,13 +348,13 @@ int run_repair(const std::vector<std::string>& args)
   rep.add("tolerance", r.tolerance);
   add_statistics(rep, s, 0);
   if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
-  rep.add("soup_vertices", soup.vertices);
-  rep.add("soup_triangles", soup.triangles);
-  rep.add("soup_border_edges", soup.border_edges);
-  rep.add("soup_non_manifold_edges", soup.non_manifold_edges);
-  rep.add("soup_non_manifold_vertices", soup.non_manifold_vertices);
-  rep.add("soup_components", soup.components);
-  rep.add("soup_closed", soup.closed);
+  rep.add("soup_vertices", r.output_points);
+  rep.add("soup_triangles", r.output_triangles);
+  rep.add("soup_border_edges", r.border_edges_after);
+  rep.add("soup_non_manifold_edges", r.non_manifold_edges_after);
+  rep.add("soup_non_manifold_vertices", r.non_manifold_vertices_after);
+  rep.add("soup_components", r.components);
+  rep.add("soup_closed", r.closed());
   rep.add("border_edges_before", r.border_edges_before);
   rep.add("border_edges_after", r.border_edges_after);
   rep.add("non_manifold_edges_before", r.non_manifold_edges_before);
@@ -380,33 +374,65 @@ int run_repair(const std::vector<std::string>& args)
   rep.add("duplicate_triangles_removed", orientation.duplicate_triangles);
   rep.add("orientation_flips", orientation.orientation_flips);
   rep.add("duplicated_points", orientation.duplicated_points);
-  rep.add("output_vertices", points.size());
-  rep.add("output_triangles", triangles.size());
+  rep.add("output_vertices", s.vertices);
+  rep.add("output_triangles", s.triangles);
+  return rep;
+}
 
-  // Every output complete in its temporary file before any is renamed: a report that cannot be
-  // written leaves OUT as it was.
-  {
-    tool::Temporary_output mesh_file(out);
-    try {
-      ST::IO::write_triangle_soup(mesh_file.stream(), out_format, points, triangles);
-    } catch(const ST::IO::Write_error& e) {
-      throw tool::File_error(out + ": " + e.what());
-    }
-    mesh_file.finish();
-    progress_on("wrote " + out);
-    std::optional<tool::Temporary_output> report_output;
-    if(!report_file.empty()) {
-      report_output.emplace(report_file);
-      report_output->stream() << rep.json() << "\n";
-      report_output->finish();
-    }
-    mesh_file.commit();
-    if(report_output) report_output->commit();
+// Every output complete in its temporary file before any is renamed: a report that cannot be
+// written leaves OUT as it was.
+void write_repair_outputs(const Repair_options& o, const std::vector<Point>& points,
+                          const std::vector<Triangle>& triangles, const Report& rep, const Progress& progress)
+{
+  tool::Temporary_output mesh_file(o.out);
+  try {
+    ST::IO::write_triangle_soup(mesh_file.stream(), o.out_format, points, triangles);
+  } catch(const ST::IO::Write_error& e) {
+    throw tool::File_error(o.out + ": " + e.what());
   }
-  print(json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
+  mesh_file.finish();
+  progress("wrote " + o.out);
+  std::optional<tool::Temporary_output> report_output;
+  if(!o.report_file.empty()) {
+    report_output.emplace(o.report_file);
+    report_output->stream() << rep.json() << "\n";
+    report_output->finish();
+  }
+  mesh_file.commit();
+  if(report_output) report_output->commit();
+}
+
+int run_repair(const std::vector<std::string>& args)
+{
+  const Repair_options o = parse_repair_arguments(args);
+  check_repair_paths(o.in, o.out, o.report_file);
+  tool::install_signal_handlers();
+
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(o.in, points, triangles);
+  const Progress progress(read.input_triangles > 1000000);
+  progress("read " + std::to_string(read.input_triangles) + " triangles");
+  const ST::Reconstruction_report r = reconstruct(o, points, triangles);
+  progress("repaired the soup");
+
+  // What is written: repeated triangles left out, components oriented, non-manifold vertices
+  // and edges separated by duplicated points. The report's statistics describe this soup.
+  const ST::Orientation_report orientation =
+    ST::orient_triangle_soup(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
+  const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
+  progress("oriented the soup");
+  std::optional<std::size_t> intersecting;
+  if(o.self_intersections) {
+    intersecting = count_self_intersecting_pairs(points, triangles);
+    progress("counted self-intersections");
+  }
+  const Report rep = repair_report(o, read, r, orientation, s, intersecting);
+  write_repair_outputs(o, points, triangles, rep, progress);
+  print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
   const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
                       (intersecting && *intersecting > 0);
-  return check && failed ? 1 : 0;
+  return o.check && failed ? 1 : 0;
 }
 
 } // namespace

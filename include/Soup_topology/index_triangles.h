@@ -33,6 +33,42 @@ struct Index_report
 };
 
 
+
+namespace internal {
+
+/// the exact weld of `corners` finite corners, corner `i` being `corner_point(i)` (triangle
+/// `i / 3`): `points` receives the distinct points in order of first appearance, `faces` the
+/// triangles of three distinct points (both cleared first); `report` receives the counts of
+/// points and collapsed triangles. `corners` is a multiple of 3 below 2^32.
+template <class CornerAccess, class PointRange, class FaceRange>
+void index_corners(std::size_t corners, const CornerAccess& corner_point, PointRange& points, FaceRange& faces,
+                   Index_report& report)
+{
+  using Face = typename FaceRange::value_type;
+  // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
+  // of the point of corner i (a first corner is read before any later one is renumbered).
+  std::vector<std::uint32_t> point_of = first_equal_points(corners, corner_point);
+  points.clear();
+  for(std::size_t i = 0; i < corners; ++i) {
+    if(point_of[i] == i) {
+      point_of[i] = static_cast<std::uint32_t>(points.size());
+      points.push_back(corner_point(i));
+    } else {
+      point_of[i] = point_of[point_of[i]];
+    }
+  }
+  faces.clear();
+  faces.reserve(corners / 3);
+  for(std::size_t k = 0; k < corners / 3; ++k) {
+    const std::size_t a = point_of[3 * k], b = point_of[3 * k + 1], c = point_of[3 * k + 2];
+    if(a == b || b == c || c == a) { ++report.collapsed_triangles; continue; }
+    faces.push_back(make_triangle<Face>(a, b, c));
+  }
+  report.vertices = points.size();
+}
+
+} // namespace internal
+
 /// \ingroup PkgSoupTopologyRef
 /// \brief builds the index representation (patent, Figure 2) of a soup of explicit triangles,
 /// such as an STL file gives: a point range of distinct points and a face range of index
@@ -59,7 +95,6 @@ template <class TriangleRange, class PointRange, class FaceRange>
 Index_report index_triangles(const TriangleRange& triangles, PointRange& points, FaceRange& faces)
 {
   using Point = typename PointRange::value_type;
-  using Face = typename FaceRange::value_type;
   Index_report report;
   std::size_t t = 0;
   for(const auto& tr : triangles) {
@@ -95,22 +130,7 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
     if(!internal::is_finite_point(corner_point(i)))
       throw Invalid_input("triangle " + std::to_string(i / 3) + ", corner " + std::to_string(i % 3) +
                           ": non-finite coordinate");
-  const std::vector<std::uint32_t> first_of = internal::first_equal_points(corners, corner_point);
-  // Number the distinct points in order of first appearance.
-  std::vector<std::uint32_t> index_of(corners);
-  points.clear();
-  for(std::size_t i = 0; i < corners; ++i) {
-    if(first_of[i] == i) { index_of[i] = static_cast<std::uint32_t>(points.size()); points.push_back(corner_point(i)); }
-    else index_of[i] = index_of[first_of[i]];
-  }
-  faces.clear();
-  faces.reserve(t);
-  for(std::size_t k = 0; k < t; ++k) {
-    const std::size_t a = index_of[3 * k], b = index_of[3 * k + 1], c = index_of[3 * k + 2];
-    if(a == b || b == c || c == a) { ++report.collapsed_triangles; continue; }
-    faces.push_back(internal::make_triangle<Face>(a, b, c));
-  }
-  report.vertices = points.size();
+  internal::index_corners(corners, corner_point, points, faces, report);
   return report;
 }
 
@@ -124,11 +144,7 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   const std::size_t n = points.size();
   std::size_t face_id = 0;
   for(const auto& f : faces) {
-    for(std::size_t k = 0; k < face_size(f); ++k)
-      if(corner(f, k, face_id) >= n)
-        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
-                            std::to_string(corner(f, k, face_id)) + " is out of range (" +
-                            std::to_string(n) + " points)");
+    for(std::size_t k = 0; k < face_size(f); ++k) check_vertex_index(corner(f, k, face_id), n, face_id);
     ++face_id;
   }
   if(n >= std::size_t(0xFFFFFFF0u))
@@ -167,6 +183,8 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
 /// here (see `remove_collapsed_triangles()`).
 /// \tparam PointRange a `std::vector`-like container of `Point_3`
 /// \tparam FaceRange a random-access range of faces, each a range of vertex indices
+/// \param points the points, the later copies of equal points removed
+/// \param faces the faces, renumbered
 /// \returns the number of points removed.
 /// \throws Invalid_input if an index is out of range, or if a point has a NaN or infinite
 ///         coordinate (the message names it); nothing is changed then.
@@ -180,6 +198,7 @@ std::size_t merge_duplicate_points(PointRange& points, FaceRange& faces)
 
 /// \ingroup PkgSoupTopologyRef
 /// \brief removes the triangles that repeat a vertex index (collapsed by a weld).
+/// \param faces the triangles, the collapsed ones removed (the others keep their order)
 /// \returns the number of triangles removed.
 template <class FaceRange>
 std::size_t remove_collapsed_triangles(FaceRange& faces)

@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <iterator>
 #include <optional>
@@ -107,12 +108,13 @@ struct is_named_parameters<CGAL::Named_function_parameters<T, Tag, Base>> : std:
 /// removes the points no triangle uses and renumbers the triangles; returns the new index of
 /// every old point (or -1).
 template <class PointRange, class TriangleRange>
-std::vector<std::size_t> remove_unreferenced_points(PointRange& points, TriangleRange& triangles)
+std::vector<std::uint32_t> remove_unreferenced_points(PointRange& points, TriangleRange& triangles)
 {
-  std::vector<std::size_t> new_index(points.size(), static_cast<std::size_t>(-1));
+  constexpr std::uint32_t unused = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> new_index(points.size(), unused);
   for(const auto& f : triangles)
     for(const auto& v : f) new_index[static_cast<std::size_t>(v)] = 0;
-  std::size_t kept = 0;
+  std::uint32_t kept = 0;
   for(std::size_t i = 0; i < points.size(); ++i)
     if(new_index[i] == 0) {
       new_index[i] = kept;
@@ -148,12 +150,12 @@ PointOut convert_point(const PointIn& p)
 template <class User_visitor>
 struct Pipeline_visitor
 {
-  std::vector<std::size_t>* merged_into;
-  const std::vector<std::size_t>* input_index;
+  std::vector<std::uint32_t>* merged_into;
+  const std::vector<std::uint32_t>* input_index;
   User_visitor* user;
   void on_merge(std::size_t duplicate, std::size_t representative)
   {
-    (*merged_into)[duplicate] = representative;
+    (*merged_into)[duplicate] = static_cast<std::uint32_t>(representative);
     user->on_merge((*input_index)[duplicate], (*input_index)[representative]);
   }
   void on_refusal(std::size_t vertex, std::size_t representative, Refusal_reason reason)
@@ -162,159 +164,294 @@ struct Pipeline_visitor
   }
 };
 
-/// the pipeline on the soup (`points`, `triangles`), read through `pm`, validated first. The
-/// points are copied once into `pts` (the traits' points) and the pipeline runs on the copy;
-/// `triangles` is repaired in place. On return `pts` holds the output points and
-/// `input_index[k]` is the index in `points` of the point that output point `k` is.
-template <class PointRange, class PointMap, class TriangleRange, class NamedParameters, class Geom_traits>
-Reconstruction_report reconstruct_soup(const PointRange& points, const PointMap& pm, TriangleRange& triangles,
-                                       const NamedParameters& np, const Geom_traits& kernel,
-                                       std::vector<typename Geom_traits::Point_3>& pts,
-                                       std::vector<std::size_t>& input_index)
+/// calls `f(visitor)` with the caller's visitor of `np`: a reference when given as `std::ref(v)`,
+/// otherwise a copy (a `Default_snap_visitor` when none is given). A visitor given by value
+/// comes back as a temporary, bound here directly so that it lives long enough to be copied
+/// (`choose_parameter` would return a reference to it that dangles).
+template <class NamedParameters, class Function>
+void with_user_visitor(const NamedParameters& np, const Function& f)
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  using Point = typename Geom_traits::Point_3;
-  using FT = typename Geom_traits::FT;
-
-  Reconstruction_report report;
-  report.input_points = static_cast<std::size_t>(std::distance(points.begin(), points.end()));
-  report.input_triangles = triangles.size();
-  // Validate everything before changing anything.
-  {
-    std::size_t face_id = 0;
-    for(const auto& f : triangles) {
-      if(face_size(f) != 3)
-        throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(face_size(f)) +
-                            " vertices; a triangle soup needs exactly 3");
-      for(std::size_t k = 0; k < 3; ++k)
-        if(corner(f, k, face_id) >= report.input_points)
-          throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
-                              std::to_string(corner(f, k, face_id)) + " is out of range (" +
-                              std::to_string(report.input_points) + " points)");
-      const std::size_t a = corner(f, 0, face_id), b = corner(f, 1, face_id), c = corner(f, 2, face_id);
-      if(a == b || b == c || c == a)
-        throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" + std::to_string(a) +
-                            ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
-      ++face_id;
-    }
-  }
-  check_finite_points(points, pm);
-  pts.clear();
-  pts.reserve(report.input_points);
-  for(const auto& e : points) pts.push_back(convert_point<Point, FT>(get(pm, e)));
-  input_index.resize(pts.size());
-  for(std::size_t i = 0; i < input_index.size(); ++i) input_index[i] = i;
-
-  const FT eps = resolve_tolerance<FT>(pts, CGAL::Identity_property_map<Point>(), np);
-  report.tolerance = CGAL::to_double(eps);
-  const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
-  const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
-  const bool count_intersections = choose_parameter(get_parameter(np, internal_np::count_self_intersections), false);
-  const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(kernel);
-  // The caller's visitor: a reference when given as `std::ref(v)`, otherwise a copy. A visitor
-  // given by value comes back as a temporary, bound here directly so that it lives long enough
-  // to be copied (`choose_parameter` would return a reference to it that dangles).
   auto&& visitor_given = CGAL::parameters::get_parameter_reference(np, CGAL::internal_np::visitor);
   using Visitor_given = decltype(visitor_given);
   constexpr bool no_visitor = std::is_same<std::decay_t<Visitor_given>, CGAL::internal_np::Param_not_found>::value;
   constexpr bool by_reference =
     std::is_lvalue_reference<Visitor_given>::value && !std::is_const<std::remove_reference_t<Visitor_given>>::value;
-  using Visitor_copy = std::conditional_t<no_visitor, Default_snap_visitor, std::decay_t<Visitor_given>>;
-  std::optional<Visitor_copy> visitor_copy;
-  if constexpr(!by_reference) {
-    if constexpr(no_visitor) visitor_copy.emplace();
-    else visitor_copy.emplace(visitor_given);
+  if constexpr(by_reference) {
+    f(visitor_given);
+  } else if constexpr(no_visitor) {
+    Default_snap_visitor visitor;
+    f(visitor);
+  } else {
+    std::decay_t<Visitor_given> visitor(visitor_given);
+    f(visitor);
   }
-  auto& user_visitor = *[&]() {
-    if constexpr(by_reference) return &visitor_given;
-    else return &*visitor_copy;
-  }();
+}
 
-  // Step 0: exact weld; a merged point is known by the first of the equal input points.
+/// whether the soup given to the pipeline may still hold exactly equal points.
+enum class Exact_weld { TO_DO, DONE };
+
+/// the steps of the pipeline on a validated soup, in the order `reconstruct_soup()` calls them.
+/// It works on `pts`, the points converted to the traits' points, and repairs `triangles` in
+/// place; `input_index[k]` is the index in the input of the point that `pts[k]` is.
+template <class Geom_traits, class TriangleRange>
+class Soup_reconstruction
+{
+public:
+  using Point = typename Geom_traits::Point_3;
+  using FT = typename Geom_traits::FT;
+
+  Soup_reconstruction(std::vector<Point>& pts, TriangleRange& triangles, std::vector<std::uint32_t>& input_index,
+                      const Geom_traits& gt)
+    : pts_(pts), triangles_(triangles), input_index_(input_index), gt_(gt)
+  {}
+
+  /// copies the points read through `pm` into `pts`; every point is its own input point.
+  template <class PointRange, class PointMap>
+  void copy_points(const PointRange& points, const PointMap& pm)
   {
-    const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map(pts, triangles);
-    report.exact_duplicates = input_index.size() - pts.size();
-    std::vector<std::size_t> first(pts.size());
-    for(std::size_t i = exact_index.size(); i-- > 0;) first[exact_index[i]] = input_index[i];
-    input_index.swap(first);
+    report_.input_points = static_cast<std::size_t>(std::distance(points.begin(), points.end()));
+    report_.input_triangles = triangles_.size();
+    pts_.clear();
+    pts_.reserve(report_.input_points);
+    for(const auto& e : points) pts_.push_back(convert_point<Point, FT>(get(pm, e)));
+    input_index_.resize(pts_.size());
+    for(std::size_t i = 0; i < input_index_.size(); ++i) input_index_[i] = static_cast<std::uint32_t>(i);
   }
-  report.collapsed_triangles = remove_collapsed_triangles(triangles);
 
-  // Step 1: the tables.
-  Adjacency_tables tables(triangles, pts.size());
-  report.border_edges_before = tables.number_of_border_edges();
-  report.non_manifold_edges_before = tables.non_manifold_edges().size();
-  report.components_before = tables.number_of_connected_components();
+  /// moves `points` into `pts` (leaving `points` empty), when they are already the traits' points.
+  void take_points(std::vector<Point>& points)
+  {
+    report_.input_points = points.size();
+    report_.input_triangles = triangles_.size();
+    pts_.clear();
+    pts_.swap(points);
+    input_index_.resize(pts_.size());
+    for(std::size_t i = 0; i < input_index_.size(); ++i) input_index_[i] = static_cast<std::uint32_t>(i);
+  }
 
-  // Steps 2 and 3, to a fixpoint.
-  std::vector<std::size_t> merged_into(pts.size());
-  for(std::size_t i = 0; i < merged_into.size(); ++i) merged_into[i] = i;
-  Pipeline_visitor<std::remove_reference_t<decltype(user_visitor)>> recorder{&merged_into, &input_index, &user_visitor};
-  std::vector<std::size_t> sites;
-  // A vertex that received welds is never moved in a later round (its welded points would move
-  // farther than the tolerance); it may still receive more.
-  std::vector<char> holds_welds(pts.size(), 0);
-  for(std::size_t round = 0; round < max_rounds; ++round) {
-    ++report.rounds;
-    const Snap_report s = snap_vertices(
-      pts, triangles, tables,
-      CGAL::Named_function_parameters<const std::vector<char>*, internal_np::fixed_vertices_t,
-                                      std::decay_t<decltype(weld_np.visitor(std::ref(recorder)))>>(
-        &holds_welds, weld_np.visitor(std::ref(recorder))));
-    for(std::size_t v = 0; v < merged_into.size(); ++v)
-      if(merged_into[v] != v) holds_welds[merged_into[v]] = 1;
-    report.snapped_vertices += s.merged_vertices;
-    report.clusters += s.clusters;
-    report.refused_same_triangle += s.refused_same_triangle;
-    report.refused_degenerate += s.refused_degenerate;
-    report.refused_flip += s.refused_flip;
-    report.refused_holds_welds += s.refused_holds_welds;
-    if(round == 0) report.short_edges = s.short_edges;
-    sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
-    std::size_t splits = 0;
-    if(do_split) {
-      const Split_report t = split_t_junctions(pts, triangles, tables, weld_np);
-      report.t_junctions += t.t_junctions;
-      report.split_triangles += t.split_triangles;
-      report.refused_splits += t.refused_overlap + t.refused_degenerate + t.refused_flip;
-      report.ambiguous_t_junctions += t.ambiguous;
-      splits = t.split_triangles;
+  /// merges exactly equal points (a merged point is known by the first of the equal input
+  /// points) and removes the triangles that collapse.
+  void weld_exact_duplicates()
+  {
+    const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map(pts_, triangles_);
+    report_.exact_duplicates = input_index_.size() - pts_.size();
+    std::vector<std::uint32_t> first(pts_.size());
+    for(std::size_t i = exact_index.size(); i-- > 0;) first[exact_index[i]] = input_index_[i];
+    input_index_.swap(first);
+    report_.collapsed_triangles = remove_collapsed_triangles(triangles_);
+  }
+
+  /// builds the adjacency tables and records what they show before the repair.
+  void build_tables()
+  {
+    tables_.emplace(triangles_, pts_.size());
+    report_.border_edges_before = tables_->number_of_border_edges();
+    report_.non_manifold_edges_before = tables_->non_manifold_edges().size();
+    report_.components_before = tables_->number_of_connected_components();
+  }
+
+  /// welds (`snap_vertices()`) and splits T-junctions (`split_t_junctions()`) in rounds, until a
+  /// round changes nothing or `max_rounds` have run; tells `user_visitor` every weld.
+  template <class User_visitor>
+  void weld_and_split_in_rounds(const FT& eps, std::size_t max_rounds, bool do_split, User_visitor& user_visitor)
+  {
+    report_.tolerance = CGAL::to_double(eps);
+    merged_into_.resize(pts_.size());
+    for(std::size_t i = 0; i < merged_into_.size(); ++i) merged_into_[i] = static_cast<std::uint32_t>(i);
+    Pipeline_visitor<User_visitor> recorder{&merged_into_, &input_index_, &user_visitor};
+    const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(gt_);
+    // A vertex that received welds is never moved in a later round (its welded points would
+    // move farther than the tolerance); it may still receive more.
+    std::vector<char> holds_welds(pts_.size(), 0);
+    std::vector<std::size_t> sites;
+    for(std::size_t round = 0; round < max_rounds; ++round) {
+      ++report_.rounds;
+      const Snap_report s = snap_vertices(
+        pts_, triangles_, *tables_,
+        CGAL::Named_function_parameters<const std::vector<char>*, internal_np::fixed_vertices_t,
+                                        std::decay_t<decltype(weld_np.visitor(std::ref(recorder)))>>(
+          &holds_welds, weld_np.visitor(std::ref(recorder))));
+      for(std::size_t v = 0; v < merged_into_.size(); ++v)
+        if(merged_into_[v] != v) holds_welds[merged_into_[v]] = 1;
+      add_weld_report(s, round);
+      sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
+      std::size_t splits = 0;
+      if(do_split) splits = add_split_report(split_t_junctions(pts_, triangles_, *tables_, weld_np));
+      if(s.merged_vertices == 0 && splits == 0) break;
     }
-    if(s.merged_vertices == 0 && splits == 0) break;
-  }
-  std::sort(sites.begin(), sites.end());
-  report.ambiguous_sites = static_cast<std::size_t>(std::unique(sites.begin(), sites.end()) - sites.begin());
-
-  // How far the points moved: every input point follows its exact-weld image (same coordinates)
-  // and then the chain of welds; only the points of the soup that were welded can move.
-  typename Geom_traits::Compute_squared_distance_3 squared_distance = kernel.compute_squared_distance_3_object();
-  for(std::size_t v = 0; v < merged_into.size(); ++v) {
-    if(merged_into[v] == v) continue;
-    std::size_t w = merged_into[v];
-    while(merged_into[w] != w) w = merged_into[w];
-    report.max_displacement =
-      std::max(report.max_displacement, std::sqrt(CGAL::to_double(squared_distance(pts[v], pts[w]))));
+    std::sort(sites.begin(), sites.end());
+    report_.ambiguous_sites = static_cast<std::size_t>(std::unique(sites.begin(), sites.end()) - sites.begin());
   }
 
-  // Final counts, from the live tables (removing unused points below changes none of them).
-  report.border_edges_after = tables.number_of_border_edges();
-  report.non_manifold_edges_after = tables.non_manifold_edges().size();
-  report.non_manifold_vertices_after = tables.non_manifold_vertices().size();
-  report.components = tables.number_of_connected_components();
-  const std::size_t before = pts.size();
-  const std::vector<std::size_t> kept_index = remove_unreferenced_points(pts, triangles);
-  for(std::size_t i = 0; i < kept_index.size(); ++i)
-    if(kept_index[i] != static_cast<std::size_t>(-1)) input_index[kept_index[i]] = input_index[i];
-  input_index.resize(pts.size());
-  report.removed_points = before - pts.size();
-  report.output_points = pts.size();
-  report.output_triangles = triangles.size();
-  if(count_intersections) {
-    report.self_intersections_counted = true;
-    report.self_intersecting_pairs = count_soup_self_intersections(pts, triangles, kernel);
+  /// how far the points moved: every input point follows its exact-weld image (same
+  /// coordinates) and then the chain of welds; only the points that were welded can move.
+  void measure_displacement()
+  {
+    const typename Geom_traits::Compute_squared_distance_3 squared_distance = gt_.compute_squared_distance_3_object();
+    for(std::size_t v = 0; v < merged_into_.size(); ++v) {
+      if(merged_into_[v] == v) continue;
+      std::size_t w = merged_into_[v];
+      while(merged_into_[w] != w) w = merged_into_[w];
+      report_.max_displacement =
+        std::max(report_.max_displacement, std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w]))));
+    }
+    std::vector<std::uint32_t>().swap(merged_into_);
   }
-  return report;
+
+  /// the final counts, from the live tables (removing unused points changes none of them), then
+  /// the removal of the points no triangle uses.
+  void finish(bool count_intersections)
+  {
+    report_.border_edges_after = tables_->number_of_border_edges();
+    report_.non_manifold_edges_after = tables_->non_manifold_edges().size();
+    report_.non_manifold_vertices_after = tables_->non_manifold_vertices().size();
+    report_.components = tables_->number_of_connected_components();
+    tables_.reset();
+    const std::size_t before = pts_.size();
+    const std::vector<std::uint32_t> kept_index = remove_unreferenced_points(pts_, triangles_);
+    for(std::size_t i = 0; i < kept_index.size(); ++i)
+      if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = input_index_[i];
+    input_index_.resize(pts_.size());
+    report_.removed_points = before - pts_.size();
+    report_.output_points = pts_.size();
+    report_.output_triangles = triangles_.size();
+    if(count_intersections) {
+      report_.self_intersections_counted = true;
+      report_.self_intersecting_pairs = count_soup_self_intersections(pts_, triangles_, gt_);
+    }
+  }
+
+  const std::vector<Point>& points() const { return pts_; }
+  const Reconstruction_report& report() const { return report_; }
+
+private:
+  void add_weld_report(const Snap_report& s, std::size_t round)
+  {
+    report_.snapped_vertices += s.merged_vertices;
+    report_.clusters += s.clusters;
+    report_.refused_same_triangle += s.refused_same_triangle;
+    report_.refused_degenerate += s.refused_degenerate;
+    report_.refused_flip += s.refused_flip;
+    report_.refused_holds_welds += s.refused_holds_welds;
+    if(round == 0) report_.short_edges = s.short_edges;
+  }
+  std::size_t add_split_report(const Split_report& t)
+  {
+    report_.t_junctions += t.t_junctions;
+    report_.split_triangles += t.split_triangles;
+    report_.refused_splits += t.refused_overlap + t.refused_degenerate + t.refused_flip;
+    report_.ambiguous_t_junctions += t.ambiguous;
+    return t.split_triangles;
+  }
+
+  std::vector<Point>& pts_;
+  TriangleRange& triangles_;
+  std::vector<std::uint32_t>& input_index_;
+  const Geom_traits& gt_;
+  std::optional<Adjacency_tables> tables_;
+  std::vector<std::uint32_t> merged_into_;
+  Reconstruction_report report_;
+};
+
+/// the pipeline on a validated soup (`check_indexed_soup()`): `put_points(steps)` gives the
+/// points to `steps` (`Soup_reconstruction::copy_points()` or `take_points()`), `triangles` is
+/// repaired in place. On return `pts` holds the output points and `input_index[k]` is the index
+/// in the input of the point that output point `k` is. With `Exact_weld::DONE` the caller
+/// guarantees that no two points are equal.
+template <class PutPoints, class TriangleRange, class NamedParameters, class Geom_traits>
+Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRange& triangles, const NamedParameters& np,
+                                       const Geom_traits& gt, std::vector<typename Geom_traits::Point_3>& pts,
+                                       std::vector<std::uint32_t>& input_index, Exact_weld exact_weld = Exact_weld::TO_DO)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using FT = typename Geom_traits::FT;
+  Soup_reconstruction<Geom_traits, TriangleRange> steps(pts, triangles, input_index, gt);
+  put_points(steps);
+  const FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
+  if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
+  steps.build_tables();
+  with_user_visitor(np, [&](auto& visitor) {
+    steps.weld_and_split_in_rounds(
+      eps, choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8)),
+      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), visitor);
+  });
+  steps.measure_displacement();
+  steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
+  return steps.report();
+}
+
+/// writes output point `k` into element `k` of `points` through `pm`, from input element
+/// `input_index[k] >= k` (the order is kept, so the elements read are not yet overwritten),
+/// and resizes `points` to the output points.
+template <class PointRange, class PointMap>
+void move_output_points(PointRange& points, const PointMap& pm, const std::vector<std::uint32_t>& input_index)
+{
+  for(std::size_t k = 0; k < input_index.size(); ++k) {
+    if(input_index[k] == k) continue;
+    const auto from = points.begin() + static_cast<std::ptrdiff_t>(input_index[k]);
+    const auto to = points.begin() + static_cast<std::ptrdiff_t>(k);
+    put(pm, *to, get(pm, *from));
+  }
+  points.resize(input_index.size());
+}
+
+/// the pipeline on the soup (`points`, `triangles`) read through the point map of `np`, in
+/// place: validated, repaired, and the output points written back into `points`. Points that
+/// are already the traits' points in a `std::vector` read through the identity are moved into
+/// the pipeline and back rather than copied (they come back if the tolerance is refused).
+template <class PointRange, class TriangleRange, class NamedParameters>
+Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRange& triangles, const NamedParameters& np,
+                                                Exact_weld exact_weld)
+{
+  using PointMap = typename CGAL::GetPointMap<PointRange, NamedParameters>::type;
+  using Geom_traits = Pipeline_geom_traits<PointMap, NamedParameters>;
+  using Point = typename Geom_traits::Point_3;
+  const PointMap pm =
+    CGAL::parameters::choose_parameter<PointMap>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
+  const Geom_traits gt =
+    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  check_indexed_soup(points, pm, triangles);
+  std::vector<Point> pts;
+  std::vector<std::uint32_t> input_index;
+  if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&
+               std::is_same<PointMap, CGAL::Identity_property_map<Point>>::value) {
+    Reconstruction_report report;
+    try {
+      report = reconstruct_soup([&](auto& steps) { steps.take_points(points); }, triangles, np, gt, pts, input_index,
+                                exact_weld);
+    } catch(const Invalid_input&) {
+      if(points.empty()) points.swap(pts);
+      throw;
+    }
+    points.swap(pts);
+    return report;
+  } else {
+    const Reconstruction_report report =
+      reconstruct_soup([&](auto& steps) { steps.copy_points(points, pm); }, triangles, np, gt, pts, input_index, exact_weld);
+    move_output_points(points, pm, input_index);
+    return report;
+  }
+}
+
+/// `reconstruct_topology(points, triangles, np)` on a soup whose points are already exactly
+/// welded and whose triangles have three distinct corners each, as `index_triangles()` and
+/// `IO::read_triangle_soup()` return them: the exact weld is not run again (the report's
+/// `exact_duplicates` and `collapsed_triangles` are 0). The soup is validated as by the public
+/// function; that no two points are equal is trusted, not checked.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Reconstruction_report reconstruct_exactly_welded_soup(PointRange& points, TriangleRange& triangles,
+                                                      const NamedParameters& np = CGAL::parameters::default_values())
+{
+  return reconstruct_soup_in_place(points, triangles, np, Exact_weld::DONE);
+}
+
+/// adds what writing into a FaceGraph did to `report`.
+inline void add_face_graph_output_report(const Face_graph_output_report& written, Reconstruction_report& report)
+{
+  report.duplicate_triangles = written.duplicate_triangles;
+  report.orientation_flips = written.orientation_flips;
+  report.duplicated_points = written.duplicated_points;
 }
 
 /// empties a FaceGraph, keeping its property maps (a vertex point map given by the caller
@@ -353,6 +490,9 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///         random access, e.g. `std::vector<Point_3>`, `std::vector<std::array<double, 3>>` (with a
 ///         point map) or `CGAL::Point_set_3` (with its `point_map()`)
 /// \tparam TriangleRange a `std::vector`-like container of triangles (3 indices each)
+/// \param points the points of the soup, replaced by the output points
+/// \param triangles the triangles of the soup, indices into `points`, repaired in place
+/// \param np an optional sequence of named parameters among the ones listed below
 ///
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `points`}
@@ -361,7 +501,8 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the predicates and the point type of the
 ///     pipeline (the points are converted to its `Point_3`)} \cgalParamType{a model of `SoupTopologyTraits`}
 ///     \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
-///   \cgalParamNBegin{snapping_tolerance} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0: exact
+///   \cgalParamNBegin{snapping_tolerance} \cgalParamDescription{the distance within which vertices are
+///     welded and T-junctions split} \cgalParamType{`geom_traits::FT`} \cgalParamDefault{0: exact
 ///     duplicates only} \cgalParamNEnd
 ///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{the tolerance as a
 ///     fraction of the bounding-box diagonal} \cgalParamNEnd
@@ -369,8 +510,10 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     round, with the indices of `points` (a point merged by the exact weld is known by the first
 ///     of the equal points)} \cgalParamType{a model of `SnapVisitor`, a copy or `std::ref(v)`}
 ///     \cgalParamDefault{`Default_snap_visitor`} \cgalParamNEnd
-///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
-///   \cgalParamNBegin{do_split_t_junctions} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamDescription{the most weld/split rounds run}
+///     \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
+///   \cgalParamNBegin{do_split_t_junctions} \cgalParamDescription{whether T-junctions are split (welding only
+///     otherwise)} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
 ///   \cgalParamNBegin{count_self_intersections} \cgalParamDescription{count the pairs of output
 ///     triangles that intersect beyond a shared vertex or edge (`geom_traits` then also needs
 ///     `Triangle_3`, `Do_intersect_3`, `Coplanar_3`)} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
@@ -386,25 +529,7 @@ template <class PointRange, class TriangleRange, class NamedParameters = CGAL::p
 Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& triangles,
                                            const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using Point_map = typename CGAL::GetPointMap<PointRange, NamedParameters>::type;
-  using Geom_traits = internal::Pipeline_geom_traits<Point_map, NamedParameters>;
-  const Point_map pm =
-    CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
-  const Geom_traits gt =
-    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
-  std::vector<typename Geom_traits::Point_3> pts;
-  std::vector<std::size_t> input_index;
-  const Reconstruction_report report = internal::reconstruct_soup(points, pm, triangles, np, gt, pts, input_index);
-  // Output point k comes from input element input_index[k] >= k (the order is kept), so the
-  // elements read here are not yet overwritten.
-  for(std::size_t k = 0; k < input_index.size(); ++k) {
-    if(input_index[k] == k) continue;
-    const auto from = points.begin() + static_cast<std::ptrdiff_t>(input_index[k]);
-    const auto to = points.begin() + static_cast<std::ptrdiff_t>(k);
-    put(pm, *to, get(pm, *from));
-  }
-  points.resize(input_index.size());
-  return report;
+  return internal::reconstruct_soup_in_place(points, triangles, np, internal::Exact_weld::TO_DO);
 }
 
 /// \ingroup PkgSoupTopologyPipeline
@@ -413,6 +538,9 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
 /// `points` and `triangles` are not changed. The points written are those of `points` (read
 /// through `point_map`), so they must convert to the point type of `mesh`.
 ///
+/// \param points the points of the soup (not changed)
+/// \param triangles the triangles of the soup, indices into `points` (not changed)
+/// \param mesh receives the repaired surface (added to what it holds)
 /// \param np_soup the parameters of `reconstruct_topology()` for the soup (`point_map` may be
 ///        a readable map only)
 /// \param np_mesh parameters for the mesh: `vertex_point_map`
@@ -431,26 +559,19 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
     CGAL::parameters::choose_parameter<Point_map>(CGAL::parameters::get_parameter(np_soup, CGAL::internal_np::point_map));
   const Geom_traits gt =
     CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np_soup, CGAL::internal_np::geom_traits));
+  internal::check_indexed_soup(points, pm, triangles);
   std::vector<std::array<std::size_t, 3>> tris;
   tris.reserve(triangles.size());
-  std::size_t face_id = 0;
-  for(const auto& f : triangles) {
-    if(internal::face_size(f) != 3)
-      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
-                          " vertices; a triangle soup needs exactly 3");
-    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
-    ++face_id;
-  }
+  for(const auto& f : triangles) tris.push_back(internal::triangle_indices(f));
   std::vector<typename Geom_traits::Point_3> pts;
-  std::vector<std::size_t> input_index;
-  Reconstruction_report report = internal::reconstruct_soup(points, pm, tris, np_soup, gt, pts, input_index);
+  std::vector<std::uint32_t> input_index;
+  Reconstruction_report report = internal::reconstruct_soup([&](auto& steps) { steps.copy_points(points, pm); }, tris,
+                                                            np_soup, gt, pts, input_index);
   std::vector<Point> out;
   out.reserve(input_index.size());
-  for(std::size_t i : input_index) out.push_back(get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(i))));
+  for(const std::size_t i : input_index) out.push_back(get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(i))));
   const Face_graph_output_report written = triangle_soup_to_face_graph(out, tris, mesh, np_mesh);
-  report.duplicate_triangles = written.duplicate_triangles;
-  report.orientation_flips = written.orientation_flips;
-  report.duplicated_points = written.duplicated_points;
+  internal::add_face_graph_output_report(written, report);
   return report;
 }
 
@@ -467,6 +588,8 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
 /// counted in `Reconstruction_report::unclipped_corners`.
 ///
 /// \tparam PolygonMesh a model of `MutableFaceGraph` (e.g. `CGAL::Surface_mesh`, `CGAL::Polyhedron_3`)
+/// \param mesh the mesh, repaired in place
+/// \param np an optional sequence of named parameters among the ones listed below
 ///
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the point of a vertex, read and
@@ -509,21 +632,21 @@ Reconstruction_report reconstruct_topology(PolygonMesh& mesh, const NamedParamet
       unclipped += internal::triangulate_polygon(points, polygon, triangles);
     }
   }
+  internal::check_indexed_soup(points, CGAL::Identity_property_map<Point>(), triangles);
   std::vector<typename Geom_traits::Point_3> pts;
-  std::vector<std::size_t> input_index;
-  Reconstruction_report report = internal::reconstruct_soup(points, CGAL::Identity_property_map<Point>(), triangles, np, gt,
-                                                            pts, input_index);
+  std::vector<std::uint32_t> input_index;
+  Reconstruction_report report = internal::reconstruct_soup(
+    [&](auto& steps) { steps.copy_points(points, CGAL::Identity_property_map<Point>()); }, triangles, np, gt, pts,
+    input_index);
   report.triangulated_polygons = polygons_cut;
   report.unclipped_corners = unclipped;
   std::vector<Point> out;
   out.reserve(input_index.size());
-  for(std::size_t i : input_index) out.push_back(points[i]);
+  for(const std::size_t i : input_index) out.push_back(points[i]);
   internal::clear_keeping_property_maps(mesh, 0);
   const Face_graph_output_report written =
     triangle_soup_to_face_graph(out, triangles, mesh, CGAL::parameters::vertex_point_map(vpm));
-  report.duplicate_triangles = written.duplicate_triangles;
-  report.orientation_flips = written.orientation_flips;
-  report.duplicated_points = written.duplicated_points;
+  internal::add_face_graph_output_report(written, report);
   return report;
 }
 

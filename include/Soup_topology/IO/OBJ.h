@@ -197,8 +197,7 @@ OBJ_read_result read_OBJ_polygons(const char* data, std::size_t size, std::vecto
                                " vertices)");
   result.vertices = pts.size();
   result.faces = polys.size();
-  points.insert(points.end(), pts.begin(), pts.end());
-  polygons.insert(polygons.end(), std::make_move_iterator(polys.begin()), std::make_move_iterator(polys.end()));
+  Soup_topology::internal::append_read_polygons(pts, polys, points, polygons);
   return result;
 }
 

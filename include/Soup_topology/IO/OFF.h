@@ -75,40 +75,51 @@ public:
   }
   std::size_t remaining_bytes() const { return static_cast<std::size_t>(e_ - p_); }
 
-  std::string_view token_or_fail(const std::string& expected)
+  /// the description of a value, a string or a function that returns one (see `describe()`).
+  template <class What>
+  static std::string describe(const What& what)
+  {
+    return Soup_topology::internal::describe(what);
+  }
+  template <class What>
+  std::string_view token_or_fail(const What& expected)
   {
     std::string_view t;
-    if(!next(t)) fail("unexpected end of file, expected " + expected);
+    if(!next(t)) fail("unexpected end of file, expected " + describe(expected));
     return t;
   }
   static std::string quoted(std::string_view t)
   { return "'" + Soup_topology::internal::printable(t.data(), t.data() + t.size()) + "'"; }
-  double number(const std::string& what)
+  template <class What>
+  double number(const What& what)
   {
     const std::string_view t = token_or_fail(what);
     double x;
     if(!Soup_topology::internal::parse_double(t.data(), t.data() + t.size(), x))
-      fail(quoted(t) + " is not a number (" + what + ")");
-    if(!std::isfinite(x)) fail("non-finite coordinate " + quoted(t) + " (" + what + ")");
+      fail(quoted(t) + " is not a number (" + describe(what) + ")");
+    if(!std::isfinite(x)) fail("non-finite coordinate " + quoted(t) + " (" + describe(what) + ")");
     return x;
   }
   /// a signed integer; `what` names it in the error messages.
-  long long integer(const std::string& what) { return integer(token_or_fail(what), what); }
-  long long integer(std::string_view t, const std::string& what)
+  template <class What>
+  long long integer(const What& what) { return integer(token_or_fail(what), what); }
+  template <class What>
+  long long integer(std::string_view t, const What& what)
   {
     long long x = 0;
     switch(Soup_topology::internal::parse_integer(t.data(), t.data() + t.size(), x)) {
-    case Soup_topology::internal::Integer_parse::NOT_AN_INTEGER: fail(quoted(t) + " is not an integer (" + what + ")");
-    case Soup_topology::internal::Integer_parse::TOO_LARGE: fail(quoted(t) + " is too large (" + what + ")");
+    case Soup_topology::internal::Integer_parse::NOT_AN_INTEGER: fail(quoted(t) + " is not an integer (" + describe(what) + ")");
+    case Soup_topology::internal::Integer_parse::TOO_LARGE: fail(quoted(t) + " is too large (" + describe(what) + ")");
     default: break;
     }
     return x;
   }
   /// an integer >= 0.
-  std::size_t count(const std::string& what)
+  template <class What>
+  std::size_t count(const What& what)
   {
     const long long x = integer(what);
-    if(x < 0) fail("negative " + what + " (" + std::to_string(x) + ")");
+    if(x < 0) fail("negative " + describe(what) + " (" + std::to_string(x) + ")");
     return static_cast<std::size_t>(x);
   }
   [[noreturn]] void fail(const std::string& what) const
@@ -207,32 +218,32 @@ OFF_read_result read_OFF_polygons(const char* data, std::size_t size, std::vecto
     std::vector<Point> pts;
     std::vector<std::vector<std::size_t>> polys;
     for(std::size_t v = 0; v < nv; ++v) {
-      const std::string what = "vertex " + std::to_string(v) + " of " + std::to_string(nv);
+      const auto what = [&]() { return "vertex " + std::to_string(v) + " of " + std::to_string(nv); };
       double c[4] = {0, 0, 0, 1};
       for(int k = 0; k < (homogeneous ? 4 : 3); ++k) c[k] = in.number(what);
       if(homogeneous) {
-        if(c[3] == 0) in.fail("homogeneous coordinate 0 (" + what + ")");
+        if(c[3] == 0) in.fail("homogeneous coordinate 0 (" + what() + ")");
         for(int k = 0; k < 3; ++k) {
           c[k] /= c[3];
-          if(!std::isfinite(c[k])) in.fail("non-finite coordinate after the division by w (" + what + ")");
+          if(!std::isfinite(c[k])) in.fail("non-finite coordinate after the division by w (" + what() + ")");
         }
       }
       pts.push_back(Point(c[0], c[1], c[2]));
       in.skip_rest_of_line();
     }
     for(std::size_t f = 0; f < nf; ++f) {
-      const std::string what = "face " + std::to_string(f) + " of " + std::to_string(nf);
-      const long long n = in.integer("number of corners of " + what);
-      if(n < 0) in.fail("negative number of corners (" + std::to_string(n) + ") of " + what);
+      const auto what = [&]() { return "face " + std::to_string(f) + " of " + std::to_string(nf); };
+      const long long n = in.integer([&]() { return "number of corners of " + what(); });
+      if(n < 0) in.fail("negative number of corners (" + std::to_string(n) + ") of " + what());
       if(static_cast<unsigned long long>(n) > in.remaining_bytes() / 2 + 1)
-        in.fail(what + " announces " + std::to_string(n) + " corners, more than the rest of the file holds");
+        in.fail(what() + " announces " + std::to_string(n) + " corners, more than the rest of the file holds");
       std::vector<std::size_t> poly;
       poly.reserve(static_cast<std::size_t>(n));
       for(long long k = 0; k < n; ++k) {
-        const long long i = in.integer("corner " + std::to_string(k) + " of " + what);
-        if(i < 0) in.fail(what + " has a negative vertex index (" + std::to_string(i) + ")");
+        const long long i = in.integer([&]() { return "corner " + std::to_string(k) + " of " + what(); });
+        if(i < 0) in.fail(what() + " has a negative vertex index (" + std::to_string(i) + ")");
         if(static_cast<unsigned long long>(i) >= nv)
-          in.fail(what + " has vertex index " + std::to_string(i) + ", out of range (" + std::to_string(nv) +
+          in.fail(what() + " has vertex index " + std::to_string(i) + ", out of range (" + std::to_string(nv) +
                   " vertices)");
         poly.push_back(base + static_cast<std::size_t>(i));
       }
@@ -244,8 +255,7 @@ OFF_read_result read_OFF_polygons(const char* data, std::size_t size, std::vecto
       in.fail("data after the " + std::to_string(nf) + " faces the header announces (" + in.quoted(t) +
               "): is the count line wrong?");
     }
-    points.insert(points.end(), pts.begin(), pts.end());
-    polygons.insert(polygons.end(), std::make_move_iterator(polys.begin()), std::make_move_iterator(polys.end()));
+    Soup_topology::internal::append_read_polygons(pts, polys, points, polygons);
     OFF_read_result result;
     result.vertices = nv;
     result.faces = nf;

@@ -111,13 +111,16 @@ public:
   PLY_data(const char* b, const char* e, std::size_t line, bool binary, bool big_endian, const std::string& name)
     : p_(b), e_(e), line_(line), token_line_(line), binary_(binary), big_endian_(big_endian), name_(name) {}
 
-  /// reads a value of type `t`; `what` names it in the messages.
-  PLY_value read(PLY_type t, const std::string& what)
+  /// reads a value of type `t`; `what` names it in the messages (a string or a function that
+  /// returns one, see `describe()`).
+  template <class What>
+  PLY_value read(PLY_type t, const What& what)
   {
+    using Soup_topology::internal::describe;
     PLY_value v;
     if(binary_) {
       const std::size_t n = PLY_size_of(t);
-      if(static_cast<std::size_t>(e_ - p_) < n) fail("the binary data ends inside " + what);
+      if(static_cast<std::size_t>(e_ - p_) < n) fail("the binary data ends inside " + describe(what));
       unsigned char bytes[8];
       std::memcpy(bytes, p_, n);
       p_ += n;
@@ -137,18 +140,21 @@ public:
       return v;
     }
     const std::string_view token = next_token();
-    if(token.empty()) fail("unexpected end of file, expected " + what);
+    if(token.empty()) fail("unexpected end of file, expected " + describe(what));
     if(PLY_is_integer(t)) {
       const Soup_topology::internal::Integer_parse r =
         Soup_topology::internal::parse_integer(token.data(), token.data() + token.size(), v.integer);
       if(r != Soup_topology::internal::Integer_parse::OK || !PLY_fits(t, v.integer))
-        fail(quoted(token) + " is not an integer of the declared type (" + what + ")");
+        fail(quoted(token) + " is not an integer of the declared type (" + describe(what) + ")");
       v.real = double(v.integer);
     } else {
       if(!Soup_topology::internal::parse_double(token.data(), token.data() + token.size(), v.real))
-        fail(quoted(token) + " is not a number (" + what + ")");
-      if(t == PLY_type::FLOAT32) // read as a float, as a binary file would hold it (strtof: no double rounding)
-        v.real = double(std::strtof(std::string(token).c_str(), nullptr));
+        fail(quoted(token) + " is not a number (" + describe(what) + ")");
+      if(t == PLY_type::FLOAT32) { // read as a float, as a binary file would hold it (no double rounding)
+        float x = 0;
+        Soup_topology::internal::parse_float(token.data(), token.data() + token.size(), x);
+        v.real = double(x);
+      }
     }
     return v;
   }
@@ -203,36 +209,20 @@ private:
   std::string name_;
 };
 
-} // namespace internal
-
-/// \ingroup PkgSoupTopologyIO
-/// \brief reads the vertices and faces of the PLY file held in `[data, data + size)` into
-/// `points` and `polygons` (appended; polygons index `points` from the size it had on entry).
-///
-/// Read: the formats `ascii`, `binary_little_endian` and `binary_big_endian` 1.0; the element
-/// `vertex` (or `vertices`) with the properties `x`, `y`, `z`; the element `face` (or `faces`)
-/// with the list `vertex_indices` (or `vertex_index`). Other properties and elements are read
-/// (to check them and to find the next element) and ignored; `comment` and `obj_info` lines too.
-/// Float coordinates are read as floats (an ASCII `0.1` of a `float` property is the float
-/// nearest to 0.1, as in a binary file). Faces are returned as they are (also those with fewer
-/// than 3 corners or a repeated index). The header lines end with LF or CR LF.
-///
-/// Rejected with a `Read_error` whose message starts with `name` and, for ASCII data, the line:
-/// a missing `ply` line or `format`, an unknown type or statement in the header, an ASCII
-/// token that is not entirely a number or does not fit its declared type, an element that
-/// announces more items than the data can hold (checked before anything is allocated),
-/// data that ends early, bytes after the last element, a vertex index that is negative or
-/// out of range (reported as written).
-/// `points` and `polygons` are unchanged when an exception is thrown.
-/// \tparam Point a `Point_3` constructible from three `double`
-template <class Point>
-PLY_read_result read_PLY_polygons(const char* data, std::size_t size, std::vector<Point>& points,
-                                  std::vector<std::vector<std::size_t>>& polygons, const std::string& name = "PLY")
+/// the header of a PLY file: its format, its elements, where its data starts and on which line.
+struct Parsed_PLY_header
 {
-  using namespace internal;
-  PLY_read_result result;
+  bool binary = false;
+  bool big_endian = false;
+  std::vector<PLY_element> elements;
+  const char* data = nullptr;
+  std::size_t line = 0;  // the line of `end_header`
+};
+
+/// reads the header of the PLY file held in `[data, end)`; `name` starts the messages.
+inline Parsed_PLY_header read_PLY_header(const char* data, const char* end, const std::string& name)
+{
   const char* p = data;
-  const char* const end = data + size;
   std::size_t line = 0;
   const auto fail = [&](std::size_t at, const std::string& what) {
     throw Read_error(name + ":" + std::to_string(at) + ": " + what);
@@ -307,28 +297,79 @@ PLY_read_result read_PLY_polygons(const char* data, std::size_t size, std::vecto
   }
   if(!header_ended) fail(line, "the PLY header has no 'end_header'");
   if(!format_seen) fail(line, "the PLY header has no 'format' line");
-  result.binary = binary;
+  Parsed_PLY_header header;
+  header.binary = binary;
+  header.big_endian = big_endian;
+  header.elements = std::move(elements);
+  header.data = p;
+  header.line = line;
+  return header;
+}
 
-  // Before anything is allocated, every element must fit in what is left: an item takes at
-  // least its bytes (binary) or 2 bytes per value (ASCII).
-  {
-    double needed = 0;
-    for(const PLY_element& el : elements) {
-      double per_item = 0;
-      for(const PLY_property& prop : el.properties)
-        per_item += binary ? double(PLY_size_of(prop.count_type != PLY_type::NONE ? prop.count_type : prop.type)) : 2.0;
-      if(el.count > 0 && per_item == 0)
-        fail(el.line, "PLY element '" + Soup_topology::internal::printable(el.name) + "' announces " +
-                        std::to_string(el.count) + " items with no property");
-      needed += per_item * double(el.count);
-      if(needed > double(end - p) + 1)
-        fail(el.line, "PLY element '" + Soup_topology::internal::printable(el.name) + "' announces " +
-                        std::to_string(el.count) + " items, more than the remaining " + std::to_string(end - p) +
-                        " bytes can hold");
-    }
+/// refuses, before anything is allocated, a header whose elements cannot fit in the data left:
+/// an item takes at least its bytes (binary) or 2 bytes per value (ASCII).
+inline void check_PLY_element_sizes(const Parsed_PLY_header& header, const char* end, const std::string& name)
+{
+  const auto fail = [&](std::size_t at, const std::string& what) {
+    throw Read_error(name + ":" + std::to_string(at) + ": " + what);
+  };
+  const bool binary = header.binary;
+  const char* const p = header.data;
+  double needed = 0;
+  for(const PLY_element& el : header.elements) {
+    double per_item = 0;
+    for(const PLY_property& prop : el.properties)
+      per_item += binary ? double(PLY_size_of(prop.count_type != PLY_type::NONE ? prop.count_type : prop.type)) : 2.0;
+    if(el.count > 0 && per_item == 0)
+      fail(el.line, "PLY element '" + Soup_topology::internal::printable(el.name) + "' announces " +
+                      std::to_string(el.count) + " items with no property");
+    needed += per_item * double(el.count);
+    if(needed > double(end - p) + 1)
+      fail(el.line, "PLY element '" + Soup_topology::internal::printable(el.name) + "' announces " +
+                      std::to_string(el.count) + " items, more than the remaining " + std::to_string(end - p) +
+                      " bytes can hold");
   }
+}
 
-  PLY_data in(p, end, line + 1, binary, big_endian, name);
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief reads the vertices and faces of the PLY file held in `[data, data + size)` into
+/// `points` and `polygons` (appended; polygons index `points` from the size it had on entry).
+///
+/// Read: the formats `ascii`, `binary_little_endian` and `binary_big_endian` 1.0; the element
+/// `vertex` (or `vertices`) with the properties `x`, `y`, `z`; the element `face` (or `faces`)
+/// with the list `vertex_indices` (or `vertex_index`). Other properties and elements are read
+/// (to check them and to find the next element) and ignored; `comment` and `obj_info` lines too.
+/// Float coordinates are read as floats (an ASCII `0.1` of a `float` property is the float
+/// nearest to 0.1, as in a binary file). Faces are returned as they are (also those with fewer
+/// than 3 corners or a repeated index). The header lines end with LF or CR LF.
+///
+/// Rejected with a `Read_error` whose message starts with `name` and, for ASCII data, the line:
+/// a missing `ply` line or `format`, an unknown type or statement in the header, an ASCII
+/// token that is not entirely a number or does not fit its declared type, an element that
+/// announces more items than the data can hold (checked before anything is allocated),
+/// data that ends early, bytes after the last element, a vertex index that is negative or
+/// out of range (reported as written).
+/// `points` and `polygons` are unchanged when an exception is thrown.
+/// \tparam Point a `Point_3` constructible from three `double`
+template <class Point>
+PLY_read_result read_PLY_polygons(const char* data, std::size_t size, std::vector<Point>& points,
+                                  std::vector<std::vector<std::size_t>>& polygons, const std::string& name = "PLY")
+{
+  using namespace internal;
+  PLY_read_result result;
+  const char* const end = data + size;
+  const Parsed_PLY_header header = read_PLY_header(data, end, name);
+  check_PLY_element_sizes(header, end, name);
+  const bool binary = header.binary;
+  const std::vector<PLY_element>& elements = header.elements;
+  result.binary = binary;
+  const auto fail = [&](std::size_t at, const std::string& what) {
+    throw Read_error(name + ":" + std::to_string(at) + ": " + what);
+  };
+
+  PLY_data in(header.data, end, header.line + 1, binary, header.big_endian, name);
   const std::size_t base = points.size();
   std::vector<Point> pts;
   std::vector<std::vector<std::size_t>> polys;
@@ -363,21 +404,21 @@ PLY_read_result read_PLY_polygons(const char* data, std::size_t size, std::vecto
       std::vector<std::size_t> poly;
       for(std::size_t k = 0; k < el.properties.size(); ++k) {
         const PLY_property& prop = el.properties[k];
-        const std::string what = el.name + " " + std::to_string(item) + ", property '" + prop.name + "'";
+        const auto what = [&]() { return el.name + " " + std::to_string(item) + ", property '" + prop.name + "'"; };
         if(prop.count_type == PLY_type::NONE) {
           const PLY_value v = in.read(prop.type, what);
           for(int d = 0; d < 3; ++d)
             if(xyz[d] == int(k)) c[d] = v.real;
           continue;
         }
-        const PLY_value n = in.read(prop.count_type, "the count of " + what);
-        if(n.integer < 0) in.fail("negative count " + std::to_string(n.integer) + " (" + what + ")");
+        const PLY_value n = in.read(prop.count_type, [&]() { return "the count of " + what(); });
+        if(n.integer < 0) in.fail("negative count " + std::to_string(n.integer) + " (" + what() + ")");
         const std::size_t count = static_cast<std::size_t>(n.integer);
-        if(count > in.remaining_bytes()) in.fail("list of " + std::to_string(count) + " values, more than the data holds (" + what + ")");
+        if(count > in.remaining_bytes()) in.fail("list of " + std::to_string(count) + " values, more than the data holds (" + what() + ")");
         const bool wanted = int(k) == indices;
         if(wanted) poly.reserve(count);
         for(std::size_t j = 0; j < count; ++j) {
-          const PLY_value v = in.read(prop.type, "value " + std::to_string(j) + " of " + what);
+          const PLY_value v = in.read(prop.type, [&]() { return "value " + std::to_string(j) + " of " + what(); });
           if(!wanted) continue;
           if(v.integer < 0) in.fail(el.name + " " + std::to_string(item) + " has a negative vertex index (" + std::to_string(v.integer) + ")");
           if(v.integer > largest) {
@@ -409,8 +450,7 @@ PLY_read_result read_PLY_polygons(const char* data, std::size_t size, std::vecto
   }
   result.vertices = pts.size();
   result.faces = polys.size();
-  points.insert(points.end(), pts.begin(), pts.end());
-  polygons.insert(polygons.end(), std::make_move_iterator(polys.begin()), std::make_move_iterator(polys.end()));
+  Soup_topology::internal::append_read_polygons(pts, polys, points, polygons);
   return result;
 }
 

@@ -19,6 +19,16 @@ public:
   explicit Read_error(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// \ingroup PkgSoupTopologyIO
+/// \brief the exception thrown by the writers when a file cannot be written (cannot be opened,
+/// a failed write) or cannot represent the soup (float rounding in STL, indices too large for
+/// the format). The message starts with the file name when the writer was given one.
+class Write_error : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
 } // namespace IO
 } // namespace Soup_topology
 

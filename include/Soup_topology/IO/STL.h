@@ -145,6 +145,41 @@ inline bool looks_like_ascii_stl(const char* b, const char* e)
 inline bool looks_like_ascii_stl(const std::string& data)
 { return looks_like_ascii_stl(data.data(), data.data() + data.size()); }
 
+/// the number of facets of the binary STL held in `[data, data + size)`, after checking that
+/// the size is the one its header announces. `name` starts the messages.
+/// \throws Read_error on a file shorter than its header, or a size that does not match.
+inline std::uint32_t binary_STL_facet_count(const char* data, std::size_t size, const std::string& name)
+{
+  const char* const end = data + size;
+  if(size < 84)
+    throw Read_error(name + ": binary STL shorter than its 84-byte header (" + std::to_string(size) + " bytes)");
+  std::uint32_t n;
+  std::memcpy(&n, data + 80, 4);
+  const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
+  if(expected != size && !starts_with_solid(data, end) &&
+     !has_binary_byte(data, data + (size < 84 + 50 * 4 ? size : 84 + 50 * 4)))
+    throw Read_error(name + ": neither an ASCII STL (it does not start with 'solid') nor a binary STL (its size, " +
+                     std::to_string(size) + " bytes, does not match the facet count of a binary header)");
+  // Checked before any allocation: a header that claims 4 billion facets costs nothing.
+  if(size < expected)
+    throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
+                     std::to_string((size - 84) / 50) + " complete facets (truncated at facet " +
+                     std::to_string((size - 84) / 50) + ")");
+  if(size > expected)
+    throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
+                     std::to_string(size - expected) + " bytes more than that");
+  return n;
+}
+
+/// corner `i` (corner `i % 3` of facet `i / 3`) of a checked binary STL held from `data` on.
+template <class Point>
+Point binary_STL_corner(const char* data, std::size_t i)
+{
+  float c[3];
+  std::memcpy(c, data + 84 + 50 * (i / 3) + 12 * (1 + i % 3), sizeof c);
+  return Point(double(c[0]), double(c[1]), double(c[2]));
+}
+
 /// the check of the first bytes of an STL input of unknown size (see `read_bounded()`): a
 /// binary header announces the size, beyond which the input is refused without reading on.
 struct STL_prefix_check
@@ -222,32 +257,10 @@ STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vect
     }
   } else {
     result.binary = true;
-    if(size < 84)
-      throw Read_error(name + ": binary STL shorter than its 84-byte header (" + std::to_string(size) +
-                       " bytes)");
-    std::uint32_t n;
-    std::memcpy(&n, data + 80, 4);
-    const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
-    if(expected != size && !internal::starts_with_solid(data, end) &&
-       !internal::has_binary_byte(data, data + (size < 84 + 50 * 4 ? size : 84 + 50 * 4)))
-      throw Read_error(name + ": neither an ASCII STL (it does not start with 'solid') nor a binary STL (its size, " +
-                       std::to_string(size) + " bytes, does not match the facet count of a binary header)");
-    // Checked before any allocation: a header that claims 4 billion facets costs nothing.
-    if(size < expected)
-      throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
-                       std::to_string((size - 84) / 50) + " complete facets (truncated at facet " +
-                       std::to_string((size - 84) / 50) + ")");
-    if(size > expected)
-      throw Read_error(name + ": binary STL header announces " + std::to_string(n) + " facets, the file holds " +
-                       std::to_string(size - expected) + " bytes more than that");
+    const std::uint32_t n = internal::binary_STL_facet_count(data, size, name);
     read.resize(n);
-    const char* p = data + 84;
-    for(std::uint32_t f = 0; f < n; ++f, p += 50) {
-      float c[12];
-      std::memcpy(c, p, sizeof c);
-      for(int k = 0; k < 3; ++k)
-        read[f][static_cast<std::size_t>(k)] = Point(double(c[3 + 3 * k]), double(c[4 + 3 * k]), double(c[5 + 3 * k]));
-    }
+    for(std::size_t f = 0; f < n; ++f)
+      for(std::size_t k = 0; k < 3; ++k) read[f][k] = internal::binary_STL_corner<Point>(data, 3 * f + k);
   }
   result.triangles = read.size();
   triangles.insert(triangles.end(), read.begin(), read.end());

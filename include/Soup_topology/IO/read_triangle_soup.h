@@ -177,6 +177,79 @@ void triangulate_polygons(const std::vector<std::vector<std::size_t>>& polygons,
   }
 }
 
+/// throws `Invalid_input` naming the first facet of `count` with a corner that has a NaN or
+/// infinite coordinate, corner `i` being `corner_point(i)`.
+template <class CornerAccess>
+void check_finite_facets(std::size_t count, const CornerAccess& corner_point, const std::string& name)
+{
+  for(std::size_t i = 0; i < 3 * count; ++i)
+    if(!Soup_topology::internal::is_finite_point(corner_point(i)))
+      throw Invalid_input(name + ": facet " + std::to_string(i / 3) + " has a non-finite coordinate");
+}
+
+/// reads an STL file into `pts` and `tris`, exactly welded. A binary file is welded while it is
+/// decoded: its corners are read from the bytes where they are, never copied into triangles.
+template <class Point, class Face>
+void read_STL_soup(const char* data, std::size_t size, const std::string& name, std::vector<Point>& pts,
+                   std::vector<Face>& tris, Soup_read_report& report)
+{
+  const std::size_t bom = Soup_topology::internal::utf8_bom_size(data, data + size);
+  Index_report ir;
+  if(looks_like_ascii_stl(data + bom, data + size)) {
+    std::vector<std::array<Point, 3>> explicit_triangles;
+    read_STL_triangles(data, size, explicit_triangles, name);
+    check_finite_facets(
+      explicit_triangles.size(), [&](std::size_t i) -> const Point& { return explicit_triangles[i / 3][i % 3]; }, name);
+    ir = index_triangles(explicit_triangles, pts, tris);
+  } else {
+    const std::size_t count = binary_STL_facet_count(data, size, name);
+    const auto corner_point = [data](std::size_t i) { return binary_STL_corner<Point>(data, i); };
+    check_finite_facets(count, corner_point, name);
+    ir.input_triangles = count;
+    ir.input_corners = 3 * count;
+    Soup_topology::internal::index_corners(ir.input_corners, corner_point, pts, tris, ir);
+  }
+  report.input_polygons = report.input_triangles = ir.input_triangles;
+  report.input_vertices = ir.input_corners;
+  report.exact_duplicates = ir.input_corners - ir.vertices;
+  report.collapsed_triangles = ir.collapsed_triangles;
+}
+
+/// reads a VRML file into `pts` and `tris` (not yet welded).
+template <class Point, class Face>
+void read_VRML_soup(const char* data, std::size_t size, const std::string& name, std::vector<Point>& pts,
+                    std::vector<Face>& tris, Soup_read_report& report)
+{
+  std::istringstream in(std::string(data, size));
+  const VRML_read_result vr = internal::read_VRML(in, name, pts, tris, VRML_read_options());
+  report.input_polygons = vr.number_of_polygons;
+  report.input_vertices = pts.size();
+  report.input_triangles = tris.size();
+  report.skipped_polygons = vr.number_of_short_polygons;
+}
+
+/// reads an OFF, OBJ or PLY file into `pts` and `tris` (not yet welded), triangulating its polygons.
+template <class Point, class Face>
+void read_polygon_soup(const char* data, std::size_t size, const std::string& format, const std::string& name,
+                       std::vector<Point>& pts, std::vector<Face>& tris, Soup_read_report& report)
+{
+  std::vector<std::vector<std::size_t>> polygons;
+  if(format == "off") {
+    read_OFF_polygons(data, size, pts, polygons, name);
+  } else if(format == "obj") {
+    read_OBJ_polygons(data, size, pts, polygons, name);
+  } else {
+    // The header checks that CGAL's reader needed are kept: their refusals are documented.
+    Soup_topology::internal::check_PLY_header(data, size, name);
+    read_PLY_polygons(data, size, pts, polygons, name);
+  }
+  report.input_polygons = polygons.size();
+  report.input_vertices = pts.size();
+  Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
+  triangulate_polygons(polygons, pts, name, tris, report);
+  report.input_triangles = tris.size();
+}
+
 template <class Point, class Face>
 Soup_read_report read_triangle_soup(const char* data, std::size_t size, const std::string& format,
                                     const std::string& name, std::vector<Point>& points, std::vector<Face>& triangles)
@@ -187,44 +260,14 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
   std::vector<Point> pts;
   std::vector<Face> tris;
   if(format == "stl") {
-    std::vector<std::array<Point, 3>> explicit_triangles;
-    read_STL_triangles(data, size, explicit_triangles, name);
-    report.input_polygons = report.input_triangles = explicit_triangles.size();
-    report.input_vertices = 3 * explicit_triangles.size();
-    for(std::size_t t = 0; t < explicit_triangles.size(); ++t)
-      for(const Point& p : explicit_triangles[t])
-        if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
-           !std::isfinite(CGAL::to_double(p.z())))
-          throw Invalid_input(name + ": facet " + std::to_string(t) + " has a non-finite coordinate");
-    const Index_report ir = index_triangles(explicit_triangles, pts, tris);
-    report.exact_duplicates = ir.input_corners - ir.vertices;
-    report.collapsed_triangles = ir.collapsed_triangles;
-  } else if(format == "wrl") {
-    std::istringstream in(std::string(data, size));
-    const VRML_read_result vr = internal::read_VRML(in, name, pts, tris, VRML_read_options());
-    report.input_polygons = vr.number_of_polygons;
-    report.input_vertices = pts.size();
-    report.input_triangles = tris.size();
-    report.skipped_polygons = vr.number_of_short_polygons;
-    Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
-    report.exact_duplicates = merge_duplicate_points(pts, tris);
-    report.collapsed_triangles = remove_collapsed_triangles(tris);
+    read_STL_soup(data, size, name, pts, tris, report);
   } else {
-    std::vector<std::vector<std::size_t>> polygons;
-    if(format == "off") {
-      read_OFF_polygons(data, size, pts, polygons, name);
-    } else if(format == "obj") {
-      read_OBJ_polygons(data, size, pts, polygons, name);
+    if(format == "wrl") {
+      read_VRML_soup(data, size, name, pts, tris, report);
+      Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
     } else {
-      // The header checks that CGAL's reader needed are kept: their refusals are documented.
-      Soup_topology::internal::check_PLY_header(data, size, name);
-      read_PLY_polygons(data, size, pts, polygons, name);
+      read_polygon_soup(data, size, format, name, pts, tris, report);
     }
-    report.input_polygons = polygons.size();
-    report.input_vertices = pts.size();
-    Soup_topology::internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
-    triangulate_polygons(polygons, pts, name, tris, report);
-    report.input_triangles = tris.size();
     report.exact_duplicates = merge_duplicate_points(pts, tris);
     report.collapsed_triangles = remove_collapsed_triangles(tris);
   }
@@ -256,6 +299,10 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
 /// `/dev/stdin`) is read up to `limit` bytes, and refused beyond (`Read_error`). Compressed
 /// files (`.gz`, `.xz`) are not read: decompress them first, or give the decompressed bytes to
 /// the overloads that take a stream or a buffer.
+/// \param filename the file; its extension gives the format
+/// \param points receives the distinct points
+/// \param triangles receives the triangles, index triples into `points`
+/// \param limit the most bytes read from an input that is not a regular file
 /// \throws Read_error if the file cannot be read, is a folder, or is malformed; Invalid_input for
 /// an index out of range or a non-finite coordinate. `points` and `triangles` are unchanged then.
 template <class Point, class Face>
@@ -273,6 +320,12 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
 /// \brief reads the file held in `[data, data + size)`, of the given `format` ("stl", "off",
 /// "obj", "ply" or "wrl", any case, with or without a dot), see the overload above; `name`
 /// starts the messages of the errors.
+/// \param data the first byte of the file
+/// \param size the number of bytes of the file
+/// \param format the format of the file
+/// \param points receives the distinct points
+/// \param triangles receives the triangles, index triples into `points`
+/// \param name the name of the input in the messages
 template <class Point, class Face>
 Soup_read_report read_triangle_soup(const char* data, std::size_t size, const std::string& format,
                                     std::vector<Point>& points, std::vector<Face>& triangles,
@@ -285,6 +338,12 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
 /// \brief reads what is left of `in` (opened in binary mode for a binary STL or PLY), of the
 /// given `format`, see the overloads above. At most `limit` bytes are read: more is a
 /// `Read_error`.
+/// \param in the stream, read to its end
+/// \param format the format of the data
+/// \param points receives the distinct points
+/// \param triangles receives the triangles, index triples into `points`
+/// \param name the name of the input in the messages
+/// \param limit the most bytes read
 template <class Point, class Face>
 Soup_read_report read_triangle_soup(std::istream& in, const std::string& format, std::vector<Point>& points,
                                     std::vector<Face>& triangles, const std::string& name = "<stream>",

@@ -13,6 +13,7 @@
 #ifndef SOUP_TOPOLOGY_IO_WRITE_TRIANGLE_SOUP_H
 #define SOUP_TOPOLOGY_IO_WRITE_TRIANGLE_SOUP_H
 
+#include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/soup_checks.h>
 
@@ -41,16 +42,6 @@
 namespace Soup_topology {
 namespace IO {
 
-/// \ingroup PkgSoupTopologyIO
-/// \brief the exception thrown by the writers when a file cannot be written (cannot be opened,
-/// a failed write) or cannot represent the soup (float rounding in STL, indices too large for
-/// the format). The message starts with the file name when the writer was given one.
-class Write_error : public std::runtime_error
-{
-public:
-  explicit Write_error(const std::string& what) : std::runtime_error(what) {}
-};
-
 namespace internal {
 
 // The three coordinates of point `p` as doubles.
@@ -60,20 +51,15 @@ std::array<double, 3> write_coordinates(const Point& p)
   return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
 }
 
-// The soup as index triples (std::size_t), checked: triangles of three distinct in-range indices.
-template <class TriangleRange>
-std::vector<std::array<std::size_t, 3>> write_triangles(const TriangleRange& triangles, std::size_t number_of_points)
+// Calls `f(a, b, c)` with the indices of every triangle, as `std::size_t`, in order; the soup
+// must have been checked (`check_triangle_soup()`).
+template <class TriangleRange, class Function>
+void for_each_triangle(const TriangleRange& triangles, const Function& f)
 {
-  Soup_topology::internal::check_triangle_soup(triangles, number_of_points);
-  std::vector<std::array<std::size_t, 3>> out;
-  out.reserve(static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles))));
-  std::size_t face_id = 0;
-  for(const auto& f : triangles) {
-    out.push_back({Soup_topology::internal::corner(f, 0, face_id), Soup_topology::internal::corner(f, 1, face_id),
-                   Soup_topology::internal::corner(f, 2, face_id)});
-    ++face_id;
+  for(const auto& t : triangles) {
+    const std::array<std::size_t, 3> v = Soup_topology::internal::triangle_indices(t);
+    f(v[0], v[1], v[2]);
   }
-  return out;
 }
 
 template <class PointRange>
@@ -121,6 +107,51 @@ private:
   std::string text_;
 };
 
+// Writes one line per point: `prefix` and the three coordinates.
+template <class PointRange>
+void write_text_points(std::ostream& os, Text_line& t, const PointRange& points, const char* prefix, int precision)
+{
+  for(const auto& p : points) {
+    const auto c = write_coordinates(p);
+    t << prefix;
+    t.real(c[0], precision) << ' ';
+    t.real(c[1], precision) << ' ';
+    t.real(c[2], precision) << '\n';
+    t.flush_to(os);
+  }
+}
+
+// Writes one line per triangle: `prefix` and the three indices plus `first_index`.
+template <class TriangleRange>
+void write_text_triangles(std::ostream& os, Text_line& t, const TriangleRange& triangles, const char* prefix,
+                          std::size_t first_index)
+{
+  for_each_triangle(triangles, [&](std::size_t a, std::size_t b, std::size_t c) {
+    t << prefix;
+    t.integer(a + first_index) << ' ';
+    t.integer(b + first_index) << ' ';
+    t.integer(c + first_index) << '\n';
+    t.flush_to(os);
+  });
+}
+
+// What every writer does first: the triangles checked, the points checked finite; returns
+// the number of triangles.
+template <class PointRange, class TriangleRange>
+std::size_t check_soup_for_writing(const PointRange& points, const TriangleRange& triangles)
+{
+  Soup_topology::internal::check_triangle_soup(triangles, points.size());
+  check_finite_for_writing(points);
+  return static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles)));
+}
+
+// The number of significant digits given by `np` (`stream_precision`), 17 by default.
+template <class NamedParameters>
+int stream_precision(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
+}
+
 inline void check_stream(const std::ostream& os)
 {
   if(!os) throw Write_error("the write failed");
@@ -158,13 +189,28 @@ void put_little_endian(std::string& out, T value)
 ///
 /// \tparam PointRange a random-access range of `Point_3`
 /// \tparam TriangleRange a range of faces of 3 indices
-template <class PointRange, class TriangleRange>
-void check_STL_float_rounding(const PointRange& points, const TriangleRange& triangles)
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{the predicate `Collinear_3` that tells which triangles were degenerate before rounding}
+///     \cgalParamType{a model of `SoupTopologyTraits`}
+///     \cgalParamDefault{the kernel of the point type}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void check_STL_float_rounding(const PointRange& points, const TriangleRange& triangles,
+                              const NamedParameters& np = CGAL::parameters::default_values())
 {
   using Point = typename PointRange::value_type;
-  using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+  using Geom_traits = typename CGAL::internal_np::Lookup_named_param_def<
+    CGAL::internal_np::geom_traits_t, NamedParameters, typename CGAL::Kernel_traits<Point>::Kernel>::type;
   using Float_point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
-  const std::vector<std::array<std::size_t, 3>> tris = internal::write_triangles(triangles, points.size());
+  const Geom_traits gt =
+    CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
+  Soup_topology::internal::check_triangle_soup(triangles, points.size());
   const std::string advice = "; STL stores coordinates as 32-bit floats: write .off, .obj or .ply to keep them as doubles";
   auto describe = [](const std::array<double, 3>& c) {
     internal::Text_line t;
@@ -177,7 +223,7 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
     return s.str();
   };
   std::vector<char> used(points.size(), 0);
-  for(const auto& t : tris) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  internal::for_each_triangle(triangles, [&](std::size_t a, std::size_t b, std::size_t c) { used[a] = used[b] = used[c] = 1; });
   std::vector<Float_point> rounded(points.size());
   std::vector<std::size_t> order;
   const double float_max = static_cast<double>(std::numeric_limits<float>::max());
@@ -211,22 +257,23 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
     return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   };
   auto coordinates = [](const Float_point& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
-  typename Kernel::Collinear_3 collinear = Kernel().collinear_3_object();
-  for(std::size_t t = 0; t < tris.size(); ++t) {
-    const auto& f = tris[t];
-    const Float_point &a = rounded[f[0]], &b = rounded[f[1]], &c = rounded[f[2]];
-    const bool was_degenerate = collinear(points[f[0]], points[f[1]], points[f[2]]);
-    if(was_degenerate) continue;
-    if(CGAL::collinear(a, b, c))
-      throw Write_error("triangle " + std::to_string(t) + " (points " + std::to_string(f[0]) + ", " +
-                        std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") becomes degenerate in float" + advice);
-    const std::array<double, 3> n0 = normal(internal::write_coordinates(points[f[0]]), internal::write_coordinates(points[f[1]]),
-                                            internal::write_coordinates(points[f[2]]));
+  const typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::size_t t = 0;
+  internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
+    const std::size_t triangle = t++;
+    const Float_point &a = rounded[i], &b = rounded[j], &c = rounded[k];
+    const bool was_degenerate = collinear(points[i], points[j], points[k]);
+    if(was_degenerate) return;
+    const auto which = [&]() {
+      return "triangle " + std::to_string(triangle) + " (points " + std::to_string(i) + ", " + std::to_string(j) + ", " +
+             std::to_string(k) + ")";
+    };
+    if(CGAL::collinear(a, b, c)) throw Write_error(which() + " becomes degenerate in float" + advice);
+    const std::array<double, 3> n0 =
+      normal(internal::write_coordinates(points[i]), internal::write_coordinates(points[j]), internal::write_coordinates(points[k]));
     const std::array<double, 3> n1 = normal(coordinates(a), coordinates(b), coordinates(c));
-    if(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0)
-      throw Write_error("triangle " + std::to_string(t) + " (points " + std::to_string(f[0]) + ", " +
-                        std::to_string(f[1]) + ", " + std::to_string(f[2]) + ") flips in float" + advice);
-  }
+    if(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0) throw Write_error(which() + " flips in float" + advice);
+  });
 }
 
 /// \ingroup PkgSoupTopologyIO
@@ -254,27 +301,14 @@ template <class PointRange, class TriangleRange, class NamedParameters = CGAL::p
 void write_OFF_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles,
                              const NamedParameters& np = CGAL::parameters::default_values())
 {
-  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
-  const auto tris = internal::write_triangles(triangles, points.size());
-  internal::check_finite_for_writing(points);
+  const std::size_t number_of_triangles = internal::check_soup_for_writing(points, triangles);
+  const int precision = internal::stream_precision(np);
   internal::Text_line t;
   t << "OFF\n";
   t.integer(points.size()) << ' ';
-  t.integer(tris.size()) << " 0\n";
-  for(const auto& p : points) {
-    const auto c = internal::write_coordinates(p);
-    t.real(c[0], precision) << ' ';
-    t.real(c[1], precision) << ' ';
-    t.real(c[2], precision) << '\n';
-    t.flush_to(os);
-  }
-  for(const auto& f : tris) {
-    t << "3 ";
-    t.integer(f[0]) << ' ';
-    t.integer(f[1]) << ' ';
-    t.integer(f[2]) << '\n';
-    t.flush_to(os);
-  }
+  t.integer(number_of_triangles) << " 0\n";
+  internal::write_text_points(os, t, points, "", precision);
+  internal::write_text_triangles(os, t, triangles, "3 ", 0);
   t.flush_to(os, true);
   os.flush();
   internal::check_stream(os);
@@ -287,25 +321,10 @@ template <class PointRange, class TriangleRange, class NamedParameters = CGAL::p
 void write_OBJ_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles,
                              const NamedParameters& np = CGAL::parameters::default_values())
 {
-  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
-  const auto tris = internal::write_triangles(triangles, points.size());
-  internal::check_finite_for_writing(points);
+  internal::check_soup_for_writing(points, triangles);
   internal::Text_line t;
-  for(const auto& p : points) {
-    const auto c = internal::write_coordinates(p);
-    t << "v ";
-    t.real(c[0], precision) << ' ';
-    t.real(c[1], precision) << ' ';
-    t.real(c[2], precision) << '\n';
-    t.flush_to(os);
-  }
-  for(const auto& f : tris) {
-    t << "f ";
-    t.integer(f[0] + 1) << ' ';
-    t.integer(f[1] + 1) << ' ';
-    t.integer(f[2] + 1) << '\n';
-    t.flush_to(os);
-  }
+  internal::write_text_points(os, t, points, "v ", internal::stream_precision(np));
+  internal::write_text_triangles(os, t, triangles, "f ", 1);
   t.flush_to(os, true);
   os.flush();
   internal::check_stream(os);
@@ -336,15 +355,13 @@ void write_PLY_triangle_soup(std::ostream& os, const PointRange& points, const T
                              const NamedParameters& np = CGAL::parameters::default_values())
 {
   const bool binary = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::use_binary_mode), true);
-  const int precision = CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, CGAL::internal_np::stream_precision), 17);
-  const auto tris = internal::write_triangles(triangles, points.size());
-  internal::check_finite_for_writing(points);
+  const std::size_t number_of_triangles = internal::check_soup_for_writing(points, triangles);
   if(points.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw Write_error("PLY face indices are written as int: " + std::to_string(points.size()) + " points are too many");
   internal::Text_line t;
   t << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\nelement vertex ";
   t.integer(points.size()) << "\nproperty double x\nproperty double y\nproperty double z\nelement face ";
-  t.integer(tris.size()) << "\nproperty list uchar int vertex_indices\nend_header\n";
+  t.integer(number_of_triangles) << "\nproperty list uchar int vertex_indices\nend_header\n";
   t.flush_to(os, true);
   if(binary) {
     std::string data;
@@ -358,27 +375,16 @@ void write_PLY_triangle_soup(std::ostream& os, const PointRange& points, const T
       for(double c : internal::write_coordinates(p)) internal::put_little_endian(data, c);
       flush(false);
     }
-    for(const auto& f : tris) {
+    internal::for_each_triangle(triangles, [&](std::size_t a, std::size_t b, std::size_t c) {
       data.push_back(3);
-      for(std::size_t v : f) internal::put_little_endian(data, static_cast<std::int32_t>(v));
+      for(std::size_t v : {a, b, c}) internal::put_little_endian(data, static_cast<std::int32_t>(v));
       flush(false);
-    }
+    });
     flush(true);
   } else {
-    for(const auto& p : points) {
-      const auto c = internal::write_coordinates(p);
-      t.real(c[0], precision) << ' ';
-      t.real(c[1], precision) << ' ';
-      t.real(c[2], precision) << '\n';
-      t.flush_to(os);
-    }
-    for(const auto& f : tris) {
-      t << "3 ";
-      t.integer(f[0]) << ' ';
-      t.integer(f[1]) << ' ';
-      t.integer(f[2]) << '\n';
-      t.flush_to(os);
-    }
+    const int precision = internal::stream_precision(np);
+    internal::write_text_points(os, t, points, "", precision);
+    internal::write_text_triangles(os, t, triangles, "3 ", 0);
     t.flush_to(os, true);
   }
   os.flush();
@@ -400,17 +406,17 @@ void write_PLY_triangle_soup(std::ostream& os, const PointRange& points, const T
 template <class PointRange, class TriangleRange>
 void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles)
 {
-  const auto tris = internal::write_triangles(triangles, points.size());
-  if(tris.size() > std::numeric_limits<std::uint32_t>::max())
-    throw Write_error("binary STL counts facets on 32 bits: " + std::to_string(tris.size()) + " triangles are too many");
-  check_STL_float_rounding(points, tris);
+  const std::size_t number_of_triangles = static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles)));
+  if(number_of_triangles > std::numeric_limits<std::uint32_t>::max())
+    throw Write_error("binary STL counts facets on 32 bits: " + std::to_string(number_of_triangles) + " triangles are too many");
+  check_STL_float_rounding(points, triangles);
   std::string data = "binary STL written by Soup_topology";
   data.resize(80, ' ');
-  internal::put_little_endian(data, static_cast<std::uint32_t>(tris.size()));
-  for(const auto& f : tris) {
-    const auto a = internal::write_coordinates(points[f[0]]);
-    const auto b = internal::write_coordinates(points[f[1]]);
-    const auto c = internal::write_coordinates(points[f[2]]);
+  internal::put_little_endian(data, static_cast<std::uint32_t>(number_of_triangles));
+  internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
+    const auto a = internal::write_coordinates(points[i]);
+    const auto b = internal::write_coordinates(points[j]);
+    const auto c = internal::write_coordinates(points[k]);
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -424,7 +430,7 @@ void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const T
       os.write(data.data(), static_cast<std::streamsize>(data.size()));
       data.clear();
     }
-  }
+  });
   os.write(data.data(), static_cast<std::streamsize>(data.size()));
   os.flush();
   internal::check_stream(os);

@@ -71,8 +71,7 @@ std::vector<std::uint32_t> first_equal_points(std::size_t n, const PointAccess& 
     // are rejected without reading that point's coordinates (a cache miss each). The table is
     // sized for the distinct points, which soups have far fewer of than corners (an STL soup has
     // about one distinct point in six corners), and grows at half load: a small table stays in
-    // cache. Measured on 3.6M corners: 265 ms with a table sized for all corners, see
-    // benchmark/index_triangles_benchmark.cpp for the current figure.
+    // cache (benchmark/index_triangles_benchmark.cpp measures it).
     constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
     struct Slot { std::uint32_t index, fingerprint; };
     auto hash_of = [](double x, double y, double z) {

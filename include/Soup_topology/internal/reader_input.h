@@ -17,18 +17,36 @@
 #include <sys/stat.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <istream>
+#include <iterator>
 #include <string>
+#include <system_error>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace Soup_topology {
 namespace internal {
+
+/// appends what a reader read (`read_points`, `read_polygons`) to the caller's containers, moved
+/// rather than copied. The readers call it once the whole file is read, so that the caller's
+/// containers are unchanged when a file is refused.
+template <class Point>
+void append_read_polygons(std::vector<Point>& read_points, std::vector<std::vector<std::size_t>>& read_polygons,
+                          std::vector<Point>& points, std::vector<std::vector<std::size_t>>& polygons)
+{
+  if(points.empty()) points.swap(read_points);
+  else points.insert(points.end(), read_points.begin(), read_points.end());
+  if(polygons.empty()) polygons.swap(read_polygons);
+  else polygons.insert(polygons.end(), std::make_move_iterator(read_polygons.begin()),
+                       std::make_move_iterator(read_polygons.end()));
+}
 
 /// the token `[b, e)` as it can be shown in a message: at most `max` bytes, then "...", with
 /// the bytes that are not printable ASCII written `\xNN`.
@@ -51,13 +69,30 @@ inline std::string printable(const char* b, const char* e, std::size_t max = 40)
 inline std::string printable(const std::string& t, std::size_t max = 40)
 { return printable(t.data(), t.data() + t.size(), max); }
 
-/// `true` if `[b, e)` is entirely a decimal floating-point number (as `strtod` reads it: also
-/// `inf`, `nan` and hexadecimal, which the callers refuse or accept as they document); its
-/// value in `x`.
-inline bool parse_double(const char* b, const char* e, double& x)
+/// `what`, a string or a function that returns one: the description of a value being read,
+/// only built when a message needs it.
+template <class What>
+std::string describe(const What& what)
+{
+  if constexpr(std::is_invocable<const What&>::value) return what();
+  else return std::string(what);
+}
+
+/// parses `[b, e)` as a whole real number of type `Real` (`float` or `double`), correctly
+/// rounded: `std::from_chars` reads the usual decimal forms without allocating; what it does not
+/// take (a leading `+`, hexadecimal, a value out of range) is read by `std::strtod` /
+/// `std::strtof`, so that the accepted texts and their values are those of the C library.
+template <class Real>
+bool parse_real(const char* b, const char* e, Real& x)
 {
   const std::size_t n = static_cast<std::size_t>(e - b);
-  if(n == 0) return false;
+  if(n == 0 || static_cast<unsigned char>(*b) <= ' ') return false;
+  Real value;
+  const std::from_chars_result r = std::from_chars(b, e, value);
+  if(r.ec == std::errc() && r.ptr == e) {
+    x = value;
+    return true;
+  }
   char local[64];
   std::string heap;
   const char* s;
@@ -69,11 +104,25 @@ inline bool parse_double(const char* b, const char* e, double& x)
     heap.assign(b, e);
     s = heap.c_str();
   }
-  // strtod skips leading white space, which a token cannot hold anyway; a NUL inside the token
-  // ends strtod early and is caught by the length check.
+  // A NUL inside the token ends strtod early and is caught by the length check.
   char* end = nullptr;
-  x = std::strtod(s, &end);
-  return end == s + n && !(static_cast<unsigned char>(*b) <= ' ');
+  if constexpr(std::is_same<Real, float>::value) x = std::strtof(s, &end);
+  else x = std::strtod(s, &end);
+  return end == s + n;
+}
+
+/// `true` if `[b, e)` is entirely a decimal floating-point number (as `strtod` reads it: also
+/// `inf`, `nan` and hexadecimal, which the callers refuse or accept as they document); its
+/// value in `x`.
+inline bool parse_double(const char* b, const char* e, double& x)
+{
+  return parse_real(b, e, x);
+}
+
+/// parses `[b, e)` as a whole `float`, rounded once from the text (as `std::strtof` does).
+inline bool parse_float(const char* b, const char* e, float& x)
+{
+  return parse_real(b, e, x);
 }
 
 /// how `parse_integer()` ended.

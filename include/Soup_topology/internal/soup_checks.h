@@ -10,6 +10,7 @@
 
 #include <CGAL/number_utils.h>
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -44,6 +45,15 @@ std::size_t corner(const Face& f, std::size_t k, std::size_t face_id)
   return static_cast<std::size_t>(value);
 }
 
+/// the three indices of the triangle `f` of any `FaceRange` type, as `std::size_t` (unchecked).
+template <class Face>
+std::array<std::size_t, 3> triangle_indices(const Face& f)
+{
+  auto it = std::begin(f);
+  const std::size_t a = static_cast<std::size_t>(*it++), b = static_cast<std::size_t>(*it++);
+  return {a, b, static_cast<std::size_t>(*it)};
+}
+
 /// writes the three indices of a triangle into a face of any `FaceRange` type.
 template <class Face>
 void assign_triangle(Face& f, std::size_t a, std::size_t b, std::size_t c)
@@ -68,6 +78,14 @@ Face make_triangle(std::size_t a, std::size_t b, std::size_t c)
   return f;
 }
 
+/// throws `Invalid_input` if the vertex index `v` of face `face_id` is not below `number_of_points`.
+inline void check_vertex_index(std::size_t v, std::size_t number_of_points, std::size_t face_id)
+{
+  if(v >= number_of_points)
+    throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " + std::to_string(v) +
+                        " is out of range (" + std::to_string(number_of_points) + " points)");
+}
+
 /// throws `Invalid_input` naming the first face that is not a triangle of three distinct,
 /// in-range vertex indices. Reads only: the caller's data is never changed.
 template <class FaceRange>
@@ -85,10 +103,7 @@ void check_triangle_soup(const FaceRange& faces, std::size_t number_of_points)
     std::size_t v[3];
     for(std::size_t k = 0; k < 3; ++k) {
       v[k] = corner(f, k, face_id);
-      if(v[k] >= number_of_points)
-        throw Invalid_input("face " + std::to_string(face_id) + ": vertex index " +
-                            std::to_string(v[k]) + " is out of range (" +
-                            std::to_string(number_of_points) + " points)");
+      check_vertex_index(v[k], number_of_points, face_id);
     }
     if(v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
       throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" +
@@ -114,6 +129,15 @@ void check_finite_points(const PointRange& points, const PointMap& point_map)
         throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate");
     ++i;
   }
+}
+
+/// throws `Invalid_input` as `check_triangle_soup()` and `check_finite_points()` do: the one
+/// validation of an indexed soup (`faces` over the points of `points` read through `point_map`).
+template <class PointRange, class PointMap, class FaceRange>
+void check_indexed_soup(const PointRange& points, const PointMap& point_map, const FaceRange& faces)
+{
+  check_triangle_soup(faces, static_cast<std::size_t>(std::distance(std::begin(points), std::end(points))));
+  check_finite_points(points, point_map);
 }
 
 } // namespace internal

@@ -8,6 +8,8 @@
 #ifndef SOUP_TOPOLOGY_INTERNAL_SOUP_SELF_INTERSECTIONS_H
 #define SOUP_TOPOLOGY_INTERNAL_SOUP_SELF_INTERSECTIONS_H
 
+#include <Soup_topology/internal/soup_checks.h>
+
 #include <CGAL/box_intersection_d.h>
 
 #include <array>
@@ -25,20 +27,16 @@ std::size_t count_soup_self_intersections(const PointRange& points, const Triang
 {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
   using Point = typename GeomTraits::Point_3;
-  typename GeomTraits::Collinear_3 collinear = gt.collinear_3_object();
-  typename GeomTraits::Coplanar_3 coplanar = gt.coplanar_3_object();
-  typename GeomTraits::Coplanar_orientation_3 coplanar_orientation = gt.coplanar_orientation_3_object();
-  typename GeomTraits::Construct_triangle_3 triangle_of = gt.construct_triangle_3_object();
-  typename GeomTraits::Construct_segment_3 segment_of = gt.construct_segment_3_object();
-  typename GeomTraits::Do_intersect_3 do_intersect = gt.do_intersect_3_object();
+  const auto collinear = gt.collinear_3_object();
+  const auto coplanar = gt.coplanar_3_object();
+  const auto coplanar_orientation = gt.coplanar_orientation_3_object();
+  const auto triangle_of = gt.construct_triangle_3_object();
+  const auto segment_of = gt.construct_segment_3_object();
+  const auto do_intersect = gt.do_intersect_3_object();
 
   std::vector<std::array<std::size_t, 3>> corners;
   corners.reserve(triangles.size());
-  for(const auto& f : triangles) {
-    auto it = std::begin(f);
-    const std::size_t a = static_cast<std::size_t>(*it++), b = static_cast<std::size_t>(*it++);
-    corners.push_back({a, b, static_cast<std::size_t>(*it)});
-  }
+  for(const auto& f : triangles) corners.push_back(triangle_indices(f));
   auto point = [&](std::size_t v) -> const Point& { return points[v]; };
   std::vector<Box> boxes;
   boxes.reserve(corners.size());
