@@ -16,6 +16,7 @@
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
 
+#include "gaps_command.h"
 #include "output_files.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -64,7 +65,9 @@ const char* usage_text =
   "  soup_topology stats FILE [--json]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
-  "  soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]\n"
+  "  soup_topology gaps FILE [--json]\n"
+  "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
+  "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
@@ -283,6 +286,7 @@ int run_repair(const std::vector<std::string>& args)
   std::string in, out, report_file;
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
+  bool automatic = false;
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   for(std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -291,7 +295,7 @@ int run_repair(const std::vector<std::string>& args)
       return args[++i];
     };
     if(a == "-o" || a == "--output") out = value();
-    else if(a == "--tolerance") tolerance = parse_number(a, value());
+    else if(a == "--tolerance") { const std::string& v = value(); if(v == "auto") automatic = true; else tolerance = parse_number(a, v); }
     else if(a == "--relative-tolerance") relative = parse_number(a, value());
     else if(a == "--report") report_file = value();
     else if(a == "--json") json = true;
@@ -305,7 +309,7 @@ int run_repair(const std::vector<std::string>& args)
   }
   if(in.empty()) throw Usage_error("repair: no input file");
   if(out.empty()) throw Usage_error("repair: no output file (-o OUT)");
-  if(tolerance && relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  if((tolerance || automatic) && relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
   const std::string out_format = ST::IO::file_extension(out);
   if(out_format != "off" && out_format != "obj" && out_format != "ply" && out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + out_format + "' (expected .off, .obj, .ply or .stl)");
@@ -317,6 +321,8 @@ int run_repair(const std::vector<std::string>& args)
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(in, points, triangles);
   Progress progress_on(read.input_triangles > 1000000);
   progress_on("read " + std::to_string(read.input_triangles) + " triangles");
+  std::optional<tool::Automatic_tolerance> chosen;
+  if(automatic) chosen = tool::automatic_tolerance(points, triangles), tolerance = chosen->tolerance;
 
   ST::Reconstruction_report r;
   if(tolerance)
@@ -352,6 +358,7 @@ int run_repair(const std::vector<std::string>& args)
   add_read_counts(rep, read);
   rep.add("exact_duplicates", read.exact_duplicates);
   rep.add("tolerance", r.tolerance);
+  if(chosen) rep.add_string("tolerance_choice", chosen->verdict + ": " + chosen->reasoning);
   add_statistics(rep, s, 0);
   if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
   rep.add("soup_vertices", soup.vertices);
@@ -423,6 +430,7 @@ int main(int argc, char** argv)
   try {
     if(command == "stats") return run_stats(args);
     if(command == "repair") return run_repair(args);
+    if(command == "gaps") return tool::run_gaps(args);
     throw Usage_error("unknown command '" + command + "'");
   } catch(const Usage_error& e) {
     std::cerr << "soup_topology: " << e.what() << "\n" << usage_text;
