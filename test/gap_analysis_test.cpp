@@ -209,6 +209,36 @@ TEST(GapAnalysis, ExactKernelGivesTheSameSuggestion)
   EXPECT_EQ(a.gaps.size(), b.gaps.size());
 }
 
+TEST(GapAnalysis, RuleClosesTheLargestSeparatedClusterBelowTheBound)
+{
+  using ST::internal::closed_gap_count;
+  EXPECT_EQ(closed_gap_count({1e-6, 2e-6, 1e-3, 1.5e-3}, 0.1), 4u);   // both clusters below the bound
+  EXPECT_EQ(closed_gap_count({1e-6, 2e-6, 1e-3, 1.5e-3}, 2e-3), 2u);  // the second one too near the bound
+  EXPECT_EQ(closed_gap_count({1e-6, 1.5e-6, 2e-6}, 3e-6), 0u);       // no separation anywhere
+  EXPECT_EQ(closed_gap_count({0, 0, 1e-2}, 1e-3), 2u);              // exact T-junctions only
+  EXPECT_EQ(closed_gap_count({1.0, 2.0}, 0.1), 0u);                 // nothing below the bound
+  EXPECT_DOUBLE_EQ(ST::internal::tolerance_between(1e-6, 1e-4), 1e-5);
+  EXPECT_DOUBLE_EQ(ST::internal::tolerance_between(0, 1e-4), 5e-5);
+}
+
+TEST(GapAnalysis, TwoSquaresWithANarrowSeam)
+{
+  // Two unit squares (two triangles each) side by side, 1e-4 apart: four gaps of 1e-4.
+  const double g = 1e-4;
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                               Point(1 + g, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1 + g, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const ST::Gap_analysis a = ST::analyze_gaps(points, triangles);
+  ASSERT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << a.reasoning;
+  EXPECT_EQ(a.border_vertices, 8u);
+  EXPECT_EQ(a.closed_gaps, 4u);
+  EXPECT_NEAR(a.feature_bound, (1 - g) / 3, 1e-12);  // the shortest border edge, on the right square
+  EXPECT_GT(a.suggested_tolerance, g);
+  EXPECT_LT(a.suggested_tolerance, a.feature_bound);
+  Soup s{points, triangles};
+  EXPECT_EQ(border_edges_after(s, a.suggested_tolerance), 6u);  // the seam closed, the outline left
+}
+
 TEST(GapAnalysis, RejectsInvalidSoups)
 {
   std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};

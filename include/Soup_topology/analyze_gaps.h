@@ -162,7 +162,9 @@ inline void suggest_tolerance(Gap_analysis& a)
     a.reasoning = "no border edge after the exact weld: nothing to close, tolerance 0";
     return;
   }
-  const double bound = a.feature_bound;
+  // Without a border feature (every border triangle degenerate) the gaps measured, up to the
+  // search radius, are all that is known.
+  const double bound = std::min(a.feature_bound, a.search_radius);
   const std::size_t below_bound =
     static_cast<std::size_t>(std::lower_bound(a.gaps.begin(), a.gaps.end(), bound) - a.gaps.begin());
   if(below_bound == 0) {
