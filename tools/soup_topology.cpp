@@ -16,6 +16,7 @@
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
 
+#include "gaps_command.h"
 #include "output_files.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -64,7 +65,9 @@ const char* usage_text =
   "  soup_topology stats FILE [--json]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
-  "  soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]\n"
+  "  soup_topology gaps FILE [--json]\n"
+  "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
+  "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
@@ -283,6 +286,8 @@ struct Repair_options
   std::string in, out, report_file, out_format;
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
+  bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
+  std::string tolerance_choice;  // its verdict and reasoning, for the report
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
 };
 
@@ -296,7 +301,11 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
       return args[++i];
     };
     if(a == "-o" || a == "--output") o.out = value();
-    else if(a == "--tolerance") o.tolerance = parse_number(a, value());
+    else if(a == "--tolerance") {
+      const std::string& v = value();
+      if(v == "auto") o.automatic = true;
+      else o.tolerance = parse_number(a, v);
+    }
     else if(a == "--relative-tolerance") o.relative = parse_number(a, value());
     else if(a == "--report") o.report_file = value();
     else if(a == "--json") o.json = true;
@@ -310,7 +319,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
   }
   if(o.in.empty()) throw Usage_error("repair: no input file");
   if(o.out.empty()) throw Usage_error("repair: no output file (-o OUT)");
-  if(o.tolerance && o.relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  if((o.tolerance || o.automatic) && o.relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
   o.out_format = ST::IO::file_extension(o.out);
   if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
@@ -346,6 +355,7 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   add_read_counts(rep, read);
   rep.add("exact_duplicates", read.exact_duplicates);
   rep.add("tolerance", r.tolerance);
+  if(o.automatic) rep.add_string("tolerance_choice", o.tolerance_choice);
   add_statistics(rep, s, 0);
   if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
   rep.add("soup_vertices", r.output_points);
@@ -404,7 +414,7 @@ void write_repair_outputs(const Repair_options& o, const std::vector<Point>& poi
 
 int run_repair(const std::vector<std::string>& args)
 {
-  const Repair_options o = parse_repair_arguments(args);
+  Repair_options o = parse_repair_arguments(args);
   check_repair_paths(o.in, o.out, o.report_file);
   tool::install_signal_handlers();
 
@@ -413,6 +423,11 @@ int run_repair(const std::vector<std::string>& args)
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(o.in, points, triangles);
   const Progress progress(read.input_triangles > 1000000);
   progress("read " + std::to_string(read.input_triangles) + " triangles");
+  if(o.automatic) {
+    const tool::Automatic_tolerance chosen = tool::automatic_tolerance(points, triangles);
+    o.tolerance = chosen.tolerance;
+    o.tolerance_choice = chosen.verdict + ": " + chosen.reasoning;
+  }
   const ST::Reconstruction_report r = reconstruct(o, points, triangles);
   progress("repaired the soup");
 
@@ -449,6 +464,7 @@ int main(int argc, char** argv)
   try {
     if(command == "stats") return run_stats(args);
     if(command == "repair") return run_repair(args);
+    if(command == "gaps") return tool::run_gaps(args);
     throw Usage_error("unknown command '" + command + "'");
   } catch(const Usage_error& e) {
     std::cerr << "soup_topology: " << e.what() << "\n" << usage_text;

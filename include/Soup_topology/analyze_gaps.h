@@ -1,0 +1,382 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The gap analysis: how far apart the copies of the seams of a soup are, how small its own
+// features are, and which snapping tolerance closes the first without collapsing the second.
+
+#ifndef SOUP_TOPOLOGY_ANALYZE_GAPS_H
+#define SOUP_TOPOLOGY_ANALYZE_GAPS_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/internal/gap_distances.h>
+#include <Soup_topology/internal/gap_suggestion.h>
+#include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/tolerance.h>
+
+#include <CGAL/Named_function_parameters.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief a bin of a log-scaled histogram: `count` values in [`lower`, `upper`). The bins are
+/// `internal::gap_histogram_bins_per_decade` (4) per decade, from the bin of the smallest
+/// positive value to that of the largest, empty bins included.
+struct Gap_histogram_bin
+{
+  double lower = 0;       ///< smallest value of the bin
+  double upper = 0;       ///< bound above the bin's values
+  std::size_t count = 0;  ///< number of values in the bin
+};
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the smallest, median and largest of a set of sizes.
+struct Size_distribution
+{
+  std::size_t count = 0;  ///< number of sizes
+  double minimum = 0;     ///< smallest size (0 if `count` is 0)
+  double median = 0;      ///< the size of rank `count / 2` in increasing order
+  double maximum = 0;     ///< largest size
+};
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief what the analysis concludes.
+enum class Gap_verdict
+{
+  CLOSED,            ///< no border edge after the exact weld: the tolerance 0 is enough
+  NOTHING_TO_CLOSE,  ///< every gap is wider than the feature bound: the borders are real, tolerance 0
+  SUGGESTED,         ///< a tolerance closes the gap cluster with a margin on both sides
+  OVERLAP            ///< the gaps and the features overlap: no tolerance is suggested
+};
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the result of `analyze_gaps()`. All lengths are in the units of the points.
+///
+/// A *gap* is measured for every border vertex (a vertex of a border edge, after the exact weld):
+/// the distance to the nearest border vertex or border edge that shares no triangle with it,
+/// within `search_radius`. The *border features* are the sizes the weld and the T-junction split
+/// decide on: the length of every border edge, and the height of a triangle from a border vertex
+/// onto a border edge of the same triangle. Following Hoffmann, Hopcroft and Karasick's minimum
+/// feature separation (edges longer than 3 epsilon, no vertex closer than 3 epsilon to an edge),
+/// the tolerance must stay below `feature_bound`, a third of the smallest border feature.
+struct Gap_analysis
+{
+  /// \name The soup after the exact weld
+  /// @{
+  std::size_t vertices = 0;                   ///< distinct points used by the triangles
+  std::size_t triangles = 0;                  ///< triangles left by the exact weld
+  std::size_t border_edges = 0;               ///< edges of one triangle only
+  std::size_t border_vertices = 0;            ///< vertices of border edges (one gap each)
+  std::size_t degenerate_triangles = 0;       ///< triangles with collinear corners (not features)
+  double bounding_box_diagonal = 0;           ///< of the points used
+  /// @}
+
+  /// \name The gaps
+  /// @{
+  double search_radius = 0;                   ///< gaps larger than this are not measured
+  std::vector<double> gaps;                   ///< the measured gaps, in increasing order
+  std::size_t gaps_beyond_search_radius = 0;  ///< border vertices with no border element within `search_radius`
+  std::size_t zero_gaps = 0;                  ///< gaps of length 0 (a vertex on another border edge)
+  std::vector<Gap_histogram_bin> gap_histogram; ///< the positive gaps, log-scaled
+  /// @}
+
+  /// \name The features
+  /// @{
+  Size_distribution shortest_edges;           ///< the shortest edge of every non-degenerate triangle
+  Size_distribution smallest_heights;         ///< the smallest height of every non-degenerate triangle
+  std::vector<Gap_histogram_bin> feature_histogram; ///< min(shortest edge, smallest height) per non-degenerate triangle
+  Size_distribution border_features;          ///< border edge lengths and heights onto border edges
+  double feature_bound = 0;                   ///< a third of `border_features.minimum` (infinite without border feature)
+  /// @}
+
+  /// \name The suggestion
+  /// @{
+  Gap_verdict verdict = Gap_verdict::CLOSED;  ///< what the analysis concludes
+  double suggested_tolerance = 0;             ///< the tolerance (0 unless `SUGGESTED`; `NaN` for `OVERLAP`)
+  std::size_t closed_gaps = 0;                ///< gaps at most the tolerance
+  double largest_closed_gap = 0;              ///< the largest of them
+  double smallest_open_gap = std::numeric_limits<double>::infinity(); ///< the smallest gap kept open (infinite: none measured)
+  double closing_margin = 0;                  ///< tolerance / largest closed gap (infinite if that gap is 0)
+  double keeping_margin = 0;                  ///< min(smallest open gap, feature bound) / tolerance
+  std::string reasoning;                      ///< the conclusion in words, with the numbers
+  /// @}
+
+  /// `true` if a tolerance is known: `CLOSED`, `NOTHING_TO_CLOSE` (0) or `SUGGESTED`.
+  bool has_suggestion() const { return verdict != Gap_verdict::OVERLAP; }
+};
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the name of a verdict, as the tool prints it (`"closed"`, `"nothing_to_close"`,
+/// `"suggested"`, `"overlap"`).
+/// \param verdict the verdict
+inline const char* verdict_name(Gap_verdict verdict)
+{
+  switch(verdict) {
+    case Gap_verdict::CLOSED: return "closed";
+    case Gap_verdict::NOTHING_TO_CLOSE: return "nothing_to_close";
+    case Gap_verdict::SUGGESTED: return "suggested";
+    case Gap_verdict::OVERLAP: return "overlap";
+  }
+  return "";
+}
+
+namespace internal {
+
+inline Size_distribution size_distribution(std::vector<double>& sizes)
+{
+  Size_distribution d;
+  d.count = sizes.size();
+  if(sizes.empty()) return d;
+  std::sort(sizes.begin(), sizes.end());
+  d.minimum = sizes.front();
+  d.median = sizes[sizes.size() / 2];
+  d.maximum = sizes.back();
+  return d;
+}
+
+inline std::string format_length(double x)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  return buffer;
+}
+
+/// fills the suggestion of `a` from its gaps and its feature bound.
+inline void suggest_tolerance(Gap_analysis& a)
+{
+  const std::size_t measured = a.gaps.size();
+  const std::size_t all_gaps = measured + a.gaps_beyond_search_radius;
+  if(a.border_edges == 0) {
+    a.verdict = Gap_verdict::CLOSED;
+    a.reasoning = "no border edge after the exact weld: nothing to close, tolerance 0";
+    return;
+  }
+  // Without a border feature (every border triangle degenerate) the gaps measured, up to the
+  // search radius, are all that is known.
+  const double bound = std::min(a.feature_bound, a.search_radius);
+  const std::size_t below_bound =
+    static_cast<std::size_t>(std::lower_bound(a.gaps.begin(), a.gaps.end(), bound) - a.gaps.begin());
+  if(below_bound == 0) {
+    a.verdict = Gap_verdict::NOTHING_TO_CLOSE;
+    a.smallest_open_gap = measured ? a.gaps.front() : std::numeric_limits<double>::infinity();
+    a.reasoning = "every gap (" + std::to_string(all_gaps) + ") is at least the feature bound " + format_length(bound) +
+                  " (a third of the smallest border feature " + format_length(a.border_features.minimum) +
+                  "): the borders are real, tolerance 0";
+    return;
+  }
+  const std::size_t closed = closed_gap_count(a.gaps, bound);
+  if(closed == 0) {
+    a.verdict = Gap_verdict::OVERLAP;
+    a.suggested_tolerance = std::numeric_limits<double>::quiet_NaN();
+    a.reasoning = std::to_string(below_bound) + " gaps lie below the feature bound " + format_length(bound) +
+                  " (a third of the smallest border feature " + format_length(a.border_features.minimum) +
+                  "), but no two consecutive ones (nor the largest and the bound) are a factor " +
+                  format_length(gap_separation_factor) +
+                  " apart: the gaps and the features overlap, no tolerance is suggested";
+    return;
+  }
+  a.verdict = Gap_verdict::SUGGESTED;
+  a.closed_gaps = closed;
+  a.largest_closed_gap = a.gaps[closed - 1];
+  a.smallest_open_gap = closed < measured ? a.gaps[closed] : std::numeric_limits<double>::infinity();
+  const double high = std::min(a.smallest_open_gap, bound);
+  a.suggested_tolerance = tolerance_between(a.largest_closed_gap, high);
+  a.closing_margin = a.largest_closed_gap > 0 ? a.suggested_tolerance / a.largest_closed_gap
+                                              : std::numeric_limits<double>::infinity();
+  a.keeping_margin = high / a.suggested_tolerance;
+  a.reasoning = "closes " + std::to_string(closed) + " of " + std::to_string(all_gaps) + " gaps (the largest " +
+                format_length(a.largest_closed_gap) + ", margin " + format_length(a.closing_margin) +
+                "), keeps open " + std::to_string(all_gaps - closed) + " (the smallest " +
+                (closed < measured ? format_length(a.smallest_open_gap) : std::string("beyond ") + format_length(a.search_radius)) +
+                ") and stays below the feature bound " + format_length(bound) + " (a third of the smallest border feature " +
+                format_length(a.border_features.minimum) + "), margin " + format_length(a.keeping_margin);
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief measures the gaps between the borders of a triangle soup and the soup's own feature
+/// sizes, and suggests the snapping tolerance that closes the gaps without collapsing features.
+///
+/// The soup is taken as given (any indexing): the function merges exactly equal points on its
+/// own copy and drops the triangles this collapses, as `reconstruct_topology()` does first, so the
+/// gaps are those the tolerance of `reconstruct_topology()` acts on. `points` and `triangles` are
+/// not changed.
+///
+/// **The rule.** With the gaps in increasing order g_1 <= ... <= g_n and the feature bound
+/// `b` (see `Gap_analysis`), the suggested tolerance closes the gaps g_1..g_k for the largest k
+/// such that g_k < b and min(g_{k+1}, b) >= 2 g_k; it is the geometric mean of g_k and
+/// min(g_{k+1}, b) (half of the latter when g_k = 0), so a factor of at least sqrt(2) separates it
+/// from the largest gap it closes and from the smallest one it keeps open or the bound. A gap at least
+/// `b` is never closed: a crack wider than three times the smallest border feature stays open.
+/// No border: `CLOSED`; no gap below `b`: `NOTHING_TO_CLOSE`; gaps below `b` but no such k:
+/// `OVERLAP` and no suggestion. The gaps and the features do not depend on the order of the
+/// points or the triangles, so neither does the suggestion.
+///
+/// **Exactness.** The candidates are found by exact radius queries of an `Octree` over the border
+/// vertices; the distances are then evaluated in `double` (from the kernel's squared distance).
+/// A decision of the weld at the suggested tolerance could differ from the analysis only for a gap
+/// within a rounding error of the tolerance, and the tolerance is a factor sqrt(2) away from every gap.
+///
+/// \tparam PointRange a random-access range of points (read through `point_map`)
+/// \tparam TriangleRange a range of triangles (3 indices each)
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup
+/// \param np optional named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `points`}
+///     \cgalParamType{a model of `ReadablePropertyMap` whose value is a point of a CGAL kernel}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the kernel of the octree queries and
+///     the distances} \cgalParamType{a CGAL kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \returns a `Gap_analysis`.
+/// \throws Invalid_input on a face that is not a triangle, an index out of range, a repeated
+///         index in a face or a non-finite coordinate.
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangles,
+                          const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Geom_traits = typename NP_helper::Geom_traits;
+  using Point = typename Geom_traits::Point_3;
+  using FT = typename Geom_traits::FT;
+  const Geom_traits gt = NP_helper::get_geom_traits(np);
+
+  std::vector<std::array<std::size_t, 3>> tris;
+  tris.reserve(triangles.size());
+  std::size_t face_id = 0;
+  for(const auto& f : triangles) {
+    if(internal::face_size(f) != 3)
+      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
+                          " vertices; a triangle soup needs exactly 3");
+    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
+    ++face_id;
+  }
+  internal::check_triangle_soup(tris, points.size());
+  const auto pm = NP_helper::get_point_map(np);
+  internal::check_finite_points(points, pm);
+  std::vector<Point> pts;
+  pts.reserve(points.size());
+  for(const auto& e : points) {
+    const auto& p = get(pm, e);
+    if constexpr(std::is_same<std::decay_t<decltype(p)>, Point>::value)
+      pts.push_back(p);
+    else
+      pts.push_back(Point(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z()))));
+  }
+  internal::merge_duplicate_points_and_map(pts, tris);
+  remove_collapsed_triangles(tris);
+  {
+    // Only the points some triangle uses.
+    std::vector<std::size_t> index(pts.size(), static_cast<std::size_t>(-1));
+    std::size_t kept = 0;
+    for(const auto& t : tris)
+      for(std::size_t v : t) index[v] = 0;
+    for(std::size_t i = 0; i < pts.size(); ++i)
+      if(index[i] == 0) { index[i] = kept; pts[kept++] = pts[i]; }
+    pts.resize(kept);
+    for(auto& t : tris)
+      for(std::size_t& v : t) v = index[v];
+  }
+  const Adjacency_tables tables(tris, pts.size());
+
+  Gap_analysis a;
+  a.vertices = pts.size();
+  a.triangles = tris.size();
+  a.border_edges = tables.number_of_border_edges();
+  a.bounding_box_diagonal = internal::bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
+  const std::vector<std::size_t> border = internal::border_vertices(tables);
+  a.border_vertices = border.size();
+
+  // The features: every non-degenerate triangle, and the border features.
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::vector<double> shortest, heights, smallest, border_features;
+  shortest.reserve(tris.size());
+  heights.reserve(tris.size());
+  smallest.reserve(tris.size());
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const Point& p = pts[tris[t][0]];
+    const Point& q = pts[tris[t][1]];
+    const Point& r = pts[tris[t][2]];
+    if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
+    const internal::Triangle_feature_sizes s = internal::triangle_feature_sizes(p, q, r);
+    shortest.push_back(s.shortest_edge);
+    heights.push_back(s.smallest_height);
+    smallest.push_back(std::min(s.shortest_edge, s.smallest_height));
+    const auto tt = static_cast<Adjacency_tables::size_type>(t);
+    bool any_border = false;
+    for(int i = 0; i < 3; ++i) any_border = any_border || tables.is_border_edge(tt, i);
+    if(!any_border) continue;
+    const double corner[3][3] = {
+      {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())},
+      {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())},
+      {CGAL::to_double(r.x()), CGAL::to_double(r.y()), CGAL::to_double(r.z())}};
+    const double u[3] = {corner[1][0] - corner[0][0], corner[1][1] - corner[0][1], corner[1][2] - corner[0][2]};
+    const double v[3] = {corner[2][0] - corner[0][0], corner[2][1] - corner[0][1], corner[2][2] - corner[0][2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    std::vector<char> on_border(3, 0);
+    for(int i = 0; i < 3; ++i)
+      if(tables.is_border_edge(tt, i)) on_border[static_cast<std::size_t>(i)] = on_border[static_cast<std::size_t>((i + 1) % 3)] = 1;
+    for(int i = 0; i < 3; ++i) {
+      if(!tables.is_border_edge(tt, i)) continue;
+      const double* a0 = corner[i];
+      const double* b0 = corner[(i + 1) % 3];
+      const double d[3] = {b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]};
+      const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      border_features.push_back(length);
+      // The third corner is a border vertex: its distance to this border edge is a feature.
+      if(on_border[static_cast<std::size_t>((i + 2) % 3)] && length > 0) border_features.push_back(twice_area / length);
+    }
+  }
+  a.shortest_edges = internal::size_distribution(shortest);
+  a.smallest_heights = internal::size_distribution(heights);
+  std::sort(smallest.begin(), smallest.end());
+  a.feature_histogram = internal::log_histogram<Gap_histogram_bin>(smallest);
+  a.border_features = internal::size_distribution(border_features);
+  a.feature_bound = border_features.empty() ? std::numeric_limits<double>::infinity() : a.border_features.minimum / 3;
+
+  // The gaps, up to the median border edge length (at least the smallest border feature, so every
+  // gap below the bound and the first one above it are measured when they exist).
+  if(!border.empty()) {
+    std::vector<double> border_lengths;
+    for(std::size_t t = 0; t < tris.size(); ++t)
+      for(int i = 0; i < 3; ++i)
+        if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
+          border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
+            pts[tris[t][static_cast<std::size_t>(i)]], pts[tris[t][static_cast<std::size_t>((i + 1) % 3)]]))));
+    std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
+                     border_lengths.end());
+    a.search_radius = border_lengths[border_lengths.size() / 2];
+    if(!border_features.empty()) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
+    const std::vector<internal::Nearest_border_element> nearest =
+      internal::nearest_border_elements(pts, tables, border, a.search_radius, gt);
+    for(const internal::Nearest_border_element& e : nearest) {
+      if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
+      else ++a.gaps_beyond_search_radius;
+    }
+    std::sort(a.gaps.begin(), a.gaps.end());
+    a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
+    a.gap_histogram = internal::log_histogram<Gap_histogram_bin>(a.gaps);
+  }
+  internal::suggest_tolerance(a);
+  return a;
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_ANALYZE_GAPS_H

@@ -1,0 +1,168 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The measurements of the gap analysis: for every border vertex, the distance to the nearest
+// border element (vertex or edge) that shares no triangle with it; for every triangle, its
+// shortest edge and its smallest height.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_GAP_DISTANCES_H
+#define SOUP_TOPOLOGY_INTERNAL_GAP_DISTANCES_H
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Octree.h>
+
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// the nearest border element of one border vertex.
+struct Nearest_border_element
+{
+  double distance = std::numeric_limits<double>::infinity(); ///< infinite: nothing within the search radius
+  std::size_t vertex = static_cast<std::size_t>(-1);         ///< the nearest vertex, or -1 if an edge is nearer
+  Adjacency_tables::Edge edge{Adjacency_tables::border_edge, -1}; ///< the nearest border edge, if nearer than any vertex
+};
+
+/// `true` if `v` and `w` are corners of one triangle of `tables`.
+inline bool share_a_triangle(const Adjacency_tables& tables, std::size_t v, std::size_t w)
+{
+  for(const Adjacency_tables::size_type t : tables.triangles_around_vertex(static_cast<Adjacency_tables::size_type>(v))) {
+    const Adjacency_tables::Triangle& tr = tables.triangle(t);
+    if(tr[0] == w || tr[1] == w || tr[2] == w) return true;
+  }
+  return false;
+}
+
+/// the vertices on border edges, in increasing order.
+inline std::vector<std::size_t> border_vertices(const Adjacency_tables& tables)
+{
+  std::vector<char> on_border(tables.number_of_vertices(), 0);
+  for(std::size_t t = 0; t < tables.number_of_triangles(); ++t)
+    for(int i = 0; i < 3; ++i)
+      if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i)) {
+        on_border[tables.vertex(static_cast<Adjacency_tables::size_type>(t), i)] = 1;
+        on_border[tables.vertex(static_cast<Adjacency_tables::size_type>(t), (i + 1) % 3)] = 1;
+      }
+  std::vector<std::size_t> out;
+  for(std::size_t v = 0; v < on_border.size(); ++v)
+    if(on_border[v]) out.push_back(v);
+  return out;
+}
+
+/// for every vertex of `border` (indices into `points`), its nearest border element within
+/// `radius` that shares no triangle with it. The candidates are found by the octree's exact
+/// radius queries over the border vertices (a vertex-vertex self-join and one segment query per
+/// border edge); the distances are then evaluated by the kernel's `Compute_squared_distance_3`
+/// (exact squared distances with an exact kernel, correctly rounded to double otherwise, up to
+/// the rounding of the construction with Epick).
+template <class Geom_traits>
+std::vector<Nearest_border_element> nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
+                                                            const Adjacency_tables& tables,
+                                                            const std::vector<std::size_t>& border,
+                                                            double radius, const Geom_traits& gt)
+{
+  using Point = typename Geom_traits::Point_3;
+  using FT = typename Geom_traits::FT;
+  std::vector<Nearest_border_element> nearest(border.size());
+  if(border.empty()) return nearest;
+  std::vector<std::size_t> slot(points.size(), static_cast<std::size_t>(-1));
+  std::vector<Point> border_points;
+  border_points.reserve(border.size());
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    slot[border[k]] = k;
+    border_points.push_back(points[border[k]]);
+  }
+  const Octree<Geom_traits> tree(border_points, CGAL::Identity_property_map<Point>(), gt);
+  typename Geom_traits::Compute_squared_distance_3 squared_distance = gt.compute_squared_distance_3_object();
+  const FT r(radius);
+
+  // Vertex to vertex: the self-join of the border vertices.
+  tree.for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+    const std::size_t v = border[k];
+    Nearest_border_element& best = nearest[k];
+    for(std::size_t j : near) {
+      const std::size_t w = border[j];
+      if(w == v || share_a_triangle(tables, v, w)) continue;
+      const double d = std::sqrt(CGAL::to_double(squared_distance(border_points[k], border_points[j])));
+      if(d < best.distance || (d == best.distance && w < best.vertex)) {
+        best.distance = d;
+        best.vertex = w;
+      }
+    }
+  });
+
+  // Vertex to edge: every border edge asks for the border vertices near it. An edge shares a
+  // triangle with a vertex when its (only) triangle contains the vertex.
+  std::vector<std::size_t> near;
+  typename Geom_traits::Construct_segment_3 segment = gt.construct_segment_3_object();
+  for(std::size_t t = 0; t < tables.number_of_triangles(); ++t) {
+    const auto tt = static_cast<Adjacency_tables::size_type>(t);
+    for(int i = 0; i < 3; ++i) {
+      if(!tables.is_border_edge(tt, i)) continue;
+      const Adjacency_tables::Triangle& tr = tables.triangle(tt);
+      const Point& a = points[tr[static_cast<std::size_t>(i)]];
+      const Point& b = points[tr[static_cast<std::size_t>((i + 1) % 3)]];
+      near.clear();
+      tree.vertices_near_segment(a, b, r, std::back_inserter(near));
+      if(near.empty()) continue;
+      const auto s = segment(a, b);
+      for(std::size_t j : near) {
+        const std::size_t v = border[j];
+        if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
+        const double d = std::sqrt(CGAL::to_double(squared_distance(border_points[j], s)));
+        Nearest_border_element& best = nearest[j];
+        // A vertex at the same distance as an edge is preferred (its end point, usually).
+        if(d < best.distance) {
+          best.distance = d;
+          best.vertex = static_cast<std::size_t>(-1);
+          best.edge = Adjacency_tables::Edge{tt, i};
+        }
+      }
+    }
+  }
+  return nearest;
+}
+
+/// the shortest edge and the smallest height of a triangle, in double, and whether its corners
+/// are collinear (then both sizes describe a degenerate triangle).
+struct Triangle_feature_sizes
+{
+  double shortest_edge = 0;
+  double smallest_height = 0;
+};
+
+template <class Point>
+Triangle_feature_sizes triangle_feature_sizes(const Point& p, const Point& q, const Point& r)
+{
+  const double a[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+  const double b[3] = {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
+  const double c[3] = {CGAL::to_double(r.x()), CGAL::to_double(r.y()), CGAL::to_double(r.z())};
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+  const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  const double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double lw = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double longest = std::max(lu, std::max(lv, lw));
+  Triangle_feature_sizes s;
+  s.shortest_edge = std::min(lu, std::min(lv, lw));
+  s.smallest_height = longest > 0 ? twice_area / longest : 0;
+  return s;
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_GAP_DISTANCES_H

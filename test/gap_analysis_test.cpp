@@ -1,0 +1,288 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Tests of analyze_gaps.h (issue 17): the suggested tolerance closes the seams of real and
+// generated soups as a good hand-picked tolerance does, keeps a wide crack open, does not depend
+// on the order of the input, and says so when the gaps and the features overlap; the `gaps`
+// command and `repair --tolerance auto`.
+
+#include <Soup_topology/analyze_gaps.h>
+#include <Soup_topology/reconstruct_topology.h>
+
+#include "soup_generators.h"
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+
+std::string cli() { return SOUP_TOPOLOGY_CLI; }
+
+struct Soup
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+};
+
+Soup load(const std::string& relative)
+{
+  Soup s;
+  soup_test::read_data_mesh(relative, s.points, s.triangles);
+  return s;
+}
+
+double diagonal(const std::vector<Point>& points)
+{
+  return ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+}
+
+std::size_t border_edges_after(Soup s, double tolerance)
+{
+  return ST::reconstruct_topology(s.points, s.triangles, CGAL::parameters::snapping_tolerance(tolerance))
+    .border_edges_after;
+}
+
+TEST(GapAnalysis, ClosedMeshNeedsNoTolerance)
+{
+  const Soup s = load("clean/elephant.off");
+  const ST::Gap_analysis a = ST::analyze_gaps(s.points, s.triangles);
+  EXPECT_EQ(a.verdict, ST::Gap_verdict::CLOSED);
+  EXPECT_EQ(a.border_edges, 0u);
+  EXPECT_TRUE(a.gaps.empty());
+  EXPECT_EQ(a.suggested_tolerance, 0.0);
+  EXPECT_GT(a.shortest_edges.count, 0u);
+  EXPECT_LE(a.shortest_edges.minimum, a.shortest_edges.median);
+  EXPECT_LE(a.smallest_heights.minimum, a.smallest_heights.median);
+}
+
+TEST(GapAnalysis, To220ClosesAsTheHandPickedTolerance)
+{
+  const Soup s = load("cad/kicad/TO-220-3_Vertical.wrl");
+  const ST::Gap_analysis a = ST::analyze_gaps(s.points, s.triangles);
+  ASSERT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << a.reasoning;
+  EXPECT_EQ(a.border_edges, 10u);
+  // The hand-picked tolerance of the pipeline tests: 1e-6 of the diagonal closes it.
+  const std::size_t by_hand = border_edges_after(s, 1e-6 * diagonal(s.points));
+  EXPECT_EQ(by_hand, 0u);
+  EXPECT_EQ(border_edges_after(s, a.suggested_tolerance), by_hand);
+  EXPECT_LT(a.suggested_tolerance, a.feature_bound);
+  EXPECT_GE(a.closing_margin, std::sqrt(2.0));
+  EXPECT_GE(a.keeping_margin, std::sqrt(2.0));
+  EXPECT_LE(a.largest_closed_gap, a.suggested_tolerance);
+  EXPECT_GT(a.smallest_open_gap, a.suggested_tolerance);
+  // The histogram counts every positive measured gap once.
+  std::size_t counted = 0;
+  for(const ST::Gap_histogram_bin& b : a.gap_histogram) {
+    EXPECT_LT(b.lower, b.upper);
+    counted += b.count;
+  }
+  EXPECT_EQ(counted + a.zero_gaps, a.gaps.size());
+  EXPECT_EQ(a.gaps.size() + a.gaps_beyond_search_radius, a.border_vertices);
+}
+
+// The pig's seams are non-conforming: the distances from a T-junction vertex to the other side
+// (0.0065 to 0.29) run into the lengths of its own border edges (from 0.26) without a break, so
+// no tolerance is a factor sqrt(2) away from both. The hand-picked 0.3 closes it only because the weld
+// refuses merges inside a triangle and merges that flip one; the analysis says so.
+TEST(GapAnalysis, PigGapsAndFeaturesOverlap)
+{
+  const Soup s = load("cgal_repair/pig.stl.xz");
+  const ST::Gap_analysis a = ST::analyze_gaps(s.points, s.triangles);
+  EXPECT_EQ(a.border_edges, 1296u);
+  EXPECT_EQ(a.verdict, ST::Gap_verdict::OVERLAP) << a.reasoning;
+  EXPECT_FALSE(a.has_suggestion());
+  EXPECT_TRUE(std::isnan(a.suggested_tolerance));
+  EXPECT_NE(a.reasoning.find("overlap"), std::string::npos);
+  ASSERT_FALSE(a.gaps.empty());
+  EXPECT_LT(a.gaps.front(), a.feature_bound);
+  EXPECT_GT(a.border_features.minimum, 0.2);
+  EXPECT_LT(a.border_features.minimum, 0.3);
+}
+
+ST::Gap_analysis analyze_jittered(const Soup& mesh, double relative_jitter, unsigned seed, Soup& soup)
+{
+  const auto generated =
+    soup_test::t_junction_soup(mesh.points, mesh.triangles, 4, relative_jitter * diagonal(mesh.points), seed);
+  soup.points = generated.points;
+  soup.triangles = generated.triangles;
+  return ST::analyze_gaps(soup.points, soup.triangles);
+}
+
+TEST(GapAnalysis, JitteredSeamsOfRealMeshesAreClosed)
+{
+  for(const char* file : {"clean/elephant.off", "clean/fandisk.off.xz"}) {
+    const Soup mesh = load(file);
+    for(double jitter : {1e-7, 1e-6, 1e-5, 1e-4}) {
+      SCOPED_TRACE(std::string(file) + " jitter " + std::to_string(jitter));
+      Soup soup;
+      const ST::Gap_analysis a = analyze_jittered(mesh, jitter, 17, soup);
+      EXPECT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << a.reasoning;
+      if(!a.has_suggestion()) continue;
+      // The copies of a point are at most 2 sqrt(3) jitter apart: the tolerance is above that.
+      EXPECT_EQ(border_edges_after(soup, a.suggested_tolerance), 0u) << a.reasoning;
+    }
+  }
+}
+
+TEST(GapAnalysis, ShuffledInputGivesTheSameSuggestion)
+{
+  const Soup mesh = load("clean/elephant.off");
+  Soup soup;
+  const ST::Gap_analysis a = analyze_jittered(mesh, 1e-6, 5, soup);
+  std::mt19937 rng(3);
+  std::vector<std::size_t> order(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  Soup shuffled;
+  shuffled.points.resize(soup.points.size());
+  std::vector<std::size_t> new_index(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) {
+    shuffled.points[i] = soup.points[order[i]];
+    new_index[order[i]] = i;
+  }
+  for(const Triangle& t : soup.triangles) {
+    const std::size_t r = rng() % 3; // rotate the corners: same triangle, same orientation
+    shuffled.triangles.push_back({new_index[t[r]], new_index[t[(r + 1) % 3]], new_index[t[(r + 2) % 3]]});
+  }
+  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  const ST::Gap_analysis b = ST::analyze_gaps(shuffled.points, shuffled.triangles);
+  EXPECT_EQ(a.verdict, b.verdict);
+  EXPECT_EQ(a.suggested_tolerance, b.suggested_tolerance);
+  EXPECT_EQ(a.gaps, b.gaps);
+  EXPECT_EQ(a.feature_bound, b.feature_bound);
+  EXPECT_EQ(a.search_radius, b.search_radius);
+}
+
+TEST(GapAnalysis, CrackWiderThanTheSmallestFeatureStaysOpen)
+{
+  const Soup mesh = load("clean/elephant.off");
+  Soup soup;
+  analyze_jittered(mesh, 1e-7, 9, soup);
+  // Move the patch of triangle 0 (its own copies of its points) by the median shortest edge of
+  // the mesh, far wider than its smallest feature: a crack along that patch's border.
+  const ST::Gap_analysis clean = ST::analyze_gaps(mesh.points, mesh.triangles);
+  const double width = clean.shortest_edges.median;
+  ASSERT_GT(width, clean.shortest_edges.minimum);
+  std::vector<ST::Adjacency_tables::size_type> component;
+  ST::Adjacency_tables(soup.triangles, soup.points.size()).number_of_connected_components(&component);
+  std::vector<char> moved(soup.points.size(), 0);
+  for(std::size_t t = 0; t < soup.triangles.size(); ++t)
+    if(component[t] == component[0])
+      for(std::size_t v : soup.triangles[t]) moved[v] = 1;
+  for(std::size_t v = 0; v < soup.points.size(); ++v)
+    if(moved[v]) soup.points[v] = Point(soup.points[v].x() + width, soup.points[v].y(), soup.points[v].z());
+  const ST::Gap_analysis a = ST::analyze_gaps(soup.points, soup.triangles);
+  ASSERT_TRUE(a.has_suggestion()) << a.reasoning;
+  EXPECT_LT(a.suggested_tolerance, a.border_features.minimum / 3);
+  Soup repaired = soup;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(
+    repaired.points, repaired.triangles, CGAL::parameters::snapping_tolerance(a.suggested_tolerance));
+  EXPECT_GT(r.border_edges_after, 0u) << a.reasoning;
+  // The jittered seams away from the moved patch are closed: fewer border edges than before.
+  EXPECT_LT(r.border_edges_after, r.border_edges_before);
+}
+
+TEST(GapAnalysis, ExactKernelGivesTheSameSuggestion)
+{
+  const Soup s = load("cad/kicad/TO-220-3_Vertical.wrl");
+  using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+  const ST::Gap_analysis a = ST::analyze_gaps(s.points, s.triangles);
+  const ST::Gap_analysis b = ST::analyze_gaps(s.points, s.triangles, CGAL::parameters::geom_traits(Epeck()));
+  EXPECT_EQ(a.verdict, b.verdict);
+  EXPECT_DOUBLE_EQ(a.suggested_tolerance, b.suggested_tolerance);
+  EXPECT_EQ(a.gaps.size(), b.gaps.size());
+}
+
+TEST(GapAnalysis, RuleClosesTheLargestSeparatedClusterBelowTheBound)
+{
+  using ST::internal::closed_gap_count;
+  EXPECT_EQ(closed_gap_count({1e-6, 2e-6, 1e-3, 1.5e-3}, 0.1), 4u);   // both clusters below the bound
+  EXPECT_EQ(closed_gap_count({1e-6, 2e-6, 1e-3, 1.5e-3}, 2e-3), 2u);  // the second one too near the bound
+  EXPECT_EQ(closed_gap_count({1e-6, 1.5e-6, 2e-6}, 3e-6), 0u);       // no separation anywhere
+  EXPECT_EQ(closed_gap_count({0, 0, 1e-2}, 1e-3), 2u);              // exact T-junctions only
+  EXPECT_EQ(closed_gap_count({1.0, 2.0}, 0.1), 0u);                 // nothing below the bound
+  EXPECT_DOUBLE_EQ(ST::internal::tolerance_between(1e-6, 1e-4), 1e-5);
+  EXPECT_DOUBLE_EQ(ST::internal::tolerance_between(0, 1e-4), 5e-5);
+}
+
+TEST(GapAnalysis, TwoSquaresWithANarrowSeam)
+{
+  // Two unit squares (two triangles each) side by side, 1e-4 apart: four gaps of 1e-4.
+  const double g = 1e-4;
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                               Point(1 + g, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1 + g, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const ST::Gap_analysis a = ST::analyze_gaps(points, triangles);
+  ASSERT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << a.reasoning;
+  EXPECT_EQ(a.border_vertices, 8u);
+  EXPECT_EQ(a.closed_gaps, 4u);
+  EXPECT_NEAR(a.feature_bound, (1 - g) / 3, 1e-12);  // the shortest border edge, on the right square
+  EXPECT_GT(a.suggested_tolerance, g);
+  EXPECT_LT(a.suggested_tolerance, a.feature_bound);
+  Soup s{points, triangles};
+  EXPECT_EQ(border_edges_after(s, a.suggested_tolerance), 6u);  // the seam closed, the outline left
+}
+
+TEST(GapAnalysis, RejectsInvalidSoups)
+{
+  std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  std::vector<Triangle> out_of_range = {{0, 1, 3}};
+  EXPECT_THROW(ST::analyze_gaps(points, out_of_range), ST::Invalid_input);
+  std::vector<Triangle> repeated = {{0, 1, 1}};
+  EXPECT_THROW(ST::analyze_gaps(points, repeated), ST::Invalid_input);
+  points[2] = Point(std::nan(""), 0, 0);
+  std::vector<Triangle> one = {{0, 1, 2}};
+  EXPECT_THROW(ST::analyze_gaps(points, one), ST::Invalid_input);
+}
+
+TEST(GapsCommand, PrintsTheAnalysisAndRepairsWithAutomaticTolerance)
+{
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  const std::string to220 = soup_test::data_file("cad/kicad/TO-220-3_Vertical.wrl");
+  const auto [json, code] = soup_test::run_command(cli() + " gaps '" + to220 + "' --json");
+  ASSERT_EQ(code, 0) << json;
+  EXPECT_NE(json.find("\"verdict\": \"suggested\""), std::string::npos) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "border_edges"), 10);
+  const auto [text, code_text] = soup_test::run_command(cli() + " gaps '" + to220 + "'");
+  EXPECT_EQ(code_text, 0);
+  EXPECT_NE(text.find("suggested_tolerance"), std::string::npos) << text;
+
+  const std::string dir = soup_test::temporary_folder("gaps_auto");
+  const auto [repair, code_repair] =
+    soup_test::run_command(cli() + " repair '" + to220 + "' -o '" + dir + "/to220.off' --tolerance auto --json --check");
+  EXPECT_EQ(code_repair, 0) << repair;
+  EXPECT_EQ(soup_test::json_integer(repair, "border_edges_after"), 0);
+  EXPECT_NE(repair.find("\"tolerance_choice\": \"suggested: closes"), std::string::npos) << repair;
+
+  // No suggestion: exit code 2, the reason on stderr, nothing written.
+  const std::string pig = soup_test::data_file("cgal_repair/pig.stl.xz");
+  const auto [refused, code_refused] = soup_test::run_command(cli() + " repair '" + pig + "' -o '" + dir +
+                                                              "/pig.off' --tolerance auto 2>&1");
+  EXPECT_EQ(code_refused, 2) << refused;
+  EXPECT_NE(refused.find("overlap"), std::string::npos) << refused;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/pig.off"));
+
+  const auto [usage, code_usage] = soup_test::run_command(cli() + " gaps 2>&1");
+  EXPECT_EQ(code_usage, 2) << usage;
+  const auto [both, code_both] = soup_test::run_command(cli() + " repair '" + to220 + "' -o '" + dir +
+                                                        "/x.off' --tolerance auto --relative-tolerance 1e-6 2>&1");
+  EXPECT_EQ(code_both, 2) << both;
+}
+
+} // namespace
