@@ -268,9 +268,8 @@ public:
       ++report_.rounds;
       const Snap_report s = snap_vertices(
         pts_, triangles_, *tables_,
-        CGAL::Named_function_parameters<const std::vector<char>*, internal_np::fixed_vertices_t,
-                                        std::decay_t<decltype(weld_np.visitor(std::ref(recorder)))>>(
-          &holds_welds, weld_np.visitor(std::ref(recorder))));
+        parameters::fixed_vertices(static_cast<const std::vector<char>*>(&holds_welds),
+                                   weld_np.visitor(std::ref(recorder))));
       for(std::size_t v = 0; v < merged_into_.size(); ++v)
         if(merged_into_[v] != v) holds_welds[merged_into_[v]] = 1;
       add_weld_report(s, round);
@@ -449,9 +448,7 @@ Reconstruction_report reconstruct_exactly_welded_soup(PointRange& points, Triang
 /// adds what writing into a FaceGraph did to `report`.
 inline void add_face_graph_output_report(const Face_graph_output_report& written, Reconstruction_report& report)
 {
-  report.duplicate_triangles = written.duplicate_triangles;
-  report.orientation_flips = written.orientation_flips;
-  report.duplicated_points = written.duplicated_points;
+  copy_orientation_counts(written, report);
 }
 
 /// empties a FaceGraph, keeping its property maps (a vertex point map given by the caller
