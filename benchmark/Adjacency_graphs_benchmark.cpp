@@ -24,6 +24,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../test/test_utilities.h"
+
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -80,11 +82,7 @@ const Data& data()
 {
   static const Data d = [] {
     Data r;
-    const std::filesystem::path tmp = std::filesystem::temp_directory_path() / "soup_topology_graph_bench_bunny00.off";
-    const std::string cmd = std::string("xz -dc '") + SOUP_TOPOLOGY_DATA_DIR "/clean/bunny00.off.xz' > '" + tmp.string() + "'";
-    if(std::system(cmd.c_str()) != 0) throw std::runtime_error("cannot decompress bunny00.off.xz");
-    ST::IO::read_triangle_soup(tmp.string(), r.points, r.triangles);
-    std::filesystem::remove(tmp);
+    ST::IO::read_triangle_soup(soup_test::data_file("clean/bunny00.off.xz"), r.points, r.triangles);
     subdivide(r.points, r.triangles);
     subdivide(r.points, r.triangles);
     r.tables = ST::Adjacency_tables(r.triangles, r.points.size());

@@ -21,6 +21,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../test/test_utilities.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -103,18 +105,14 @@ const Data_set& bunny()
   static const Data_set data = [] {
     Data_set d;
     d.name = "bunny";
-    namespace fs = std::filesystem;
-    const fs::path src = fs::path(SOUP_TOPOLOGY_DATA_DIR) / "clean" / "bunny00.off.xz";
-    const fs::path off = fs::temp_directory_path() / "soup_topology_octree_benchmark_bunny.off";
-    const std::string cmd = "xz -dc '" + src.string() + "' > '" + off.string() + "'";
+    const std::string off = soup_test::data_file("clean/bunny00.off.xz");
     std::vector<Point> pts;
     std::vector<std::array<std::size_t, 3>> tris;
-    if(std::system(cmd.c_str()) != 0 || !CGAL::IO::read_polygon_soup(off.string(), pts, tris))
+    if(!CGAL::IO::read_polygon_soup(off, pts, tris))
     {
-      std::cerr << "cannot read " << src << "\n";
+      std::cerr << "cannot read " << off << "\n";
       std::exit(EXIT_FAILURE);
     }
-    fs::remove(off);
     // twice gives ~0.6M vertices, a third time ~2.4M: keep 1M of those, at random
     subdivide(pts, tris);
     subdivide(pts, tris);

@@ -15,6 +15,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../test/test_utilities.h"
+
 #include <array>
 #include <cstdlib>
 #include <filesystem>
@@ -45,12 +47,8 @@ const Input& input()
     Input r;
     const fs::path dir = fs::temp_directory_path() / "soup_topology_VRML_benchmark";
     fs::create_directories(dir);
-    r.wrl = (dir / "Infineon_EasyPIM-2B.wrl").string();
+    r.wrl = soup_test::data_file("cad/kicad/Infineon_EasyPIM-2B.wrl.xz");
     r.off = (dir / "Infineon_EasyPIM-2B.off").string();
-    const std::string source = std::string(SOUP_TOPOLOGY_DATA_DIR) + "/cad/kicad/Infineon_EasyPIM-2B.wrl.xz";
-    const std::string command = "xz -dc '" + source + "' > '" + r.wrl + "'";
-    if(std::system(command.c_str()) != 0)
-      throw std::runtime_error("cannot decompress " + source);
     std::vector<Point> points;
     std::vector<Triangle> triangles;
     Soup_topology::IO::read_VRML(r.wrl, points, triangles);

@@ -16,6 +16,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../test/test_utilities.h"
+
 #include <array>
 #include <cstdlib>
 #include <filesystem>
@@ -42,16 +44,7 @@ const Input& input()
 {
   static const Input data = [] {
     Input in;
-    std::string path = input_file;
-    if(path.size() > 3 && path.compare(path.size() - 3, 3, ".xz") == 0) {
-      const std::filesystem::path dir = std::filesystem::temp_directory_path() / "soup_topology_loop_benchmark";
-      std::filesystem::create_directories(dir);
-      const std::string target = (dir / std::filesystem::path(path).stem()).string();
-      const std::string command = "xz -dc '" + path + "' > '" + target + "'";
-      if(std::system(command.c_str()) != 0) { std::cerr << "cannot run: " << command << std::endl; std::exit(1); }
-      path = target;
-    }
-    Soup_topology::IO::read_triangle_soup(path, in.points, in.triangles);
+    Soup_topology::IO::read_triangle_soup(soup_test::decompressed_file(input_file), in.points, in.triangles);
     return in;
   }();
   return data;

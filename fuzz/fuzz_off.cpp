@@ -11,19 +11,11 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  std::vector<soup_fuzz::Point> points(2);
-  std::vector<std::vector<std::size_t>> polygons(1);
-  try {
-    const auto r = Soup_topology::IO::read_OFF_polygons(text, points, polygons, "fuzz.off");
-    SOUP_FUZZ_CHECK(points.size() == 2 + r.vertices && polygons.size() == 1 + r.faces, "counts");
-    for(std::size_t f = 1; f < polygons.size(); ++f)
-      for(std::size_t v : polygons[f]) SOUP_FUZZ_CHECK(v >= 2 && v < points.size(), "index out of range");
-    for(const auto& p : points)
-      SOUP_FUZZ_CHECK(std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()), "non-finite point");
-  } catch(const Soup_topology::IO::Read_error& e) {
-    SOUP_FUZZ_CHECK(points.size() == 2 && polygons.size() == 1, "containers changed by a failed read");
-    SOUP_FUZZ_CHECK(std::string(e.what()).rfind("fuzz.off:", 0) == 0, std::string("no line in ") + e.what());
-  }
+  soup_fuzz::check_polygon_reader(
+    [&](std::vector<soup_fuzz::Point>& points, std::vector<std::vector<std::size_t>>& polygons) {
+      return Soup_topology::IO::read_OFF_polygons(text, points, polygons, "fuzz.off");
+    },
+    "fuzz.off:", "no line");
   soup_fuzz::read_through_file(data, size, "off");
   return 0;
 }

@@ -10,6 +10,8 @@
 #                    reader bounds its work by the input's size, 64 KB at most here)
 #   FUZZ_RSS_MB      resident memory beyond which the run fails (default 2048)
 #   FUZZ_BUILD_DIR   build folder (default build-fuzz)
+#   JOBS             targets built, and run, at the same time (default: nproc); each run is one
+#                    process on one core, so FUZZ_SECONDS per target holds whatever JOBS is
 # The VRML target gets a dictionary of the grammar (fuzz/vrml.dict) besides its seeds (DEF/USE
 # DAGs and chains, nested transforms, shared Coordinates, non-convex polygons).
 # A nightly run of the VRML reader and the triangulator, about 8 hours:
@@ -37,12 +39,11 @@ rss_mb=${FUZZ_RSS_MB:-2048}
 jobs=${JOBS:-$(nproc)}
 data=${SOUP_TOPOLOGY_DATA_DIR:-../shared/data}
 
+# Only the chosen fuzz targets are configured: the default target builds them all, in parallel.
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
       -DSOUP_TOPOLOGY_BUILD_TESTS=OFF -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF \
-      -DSOUP_TOPOLOGY_BUILD_FUZZERS=ON > /dev/null
-for t in $targets; do
-  cmake --build "$build" -j "$jobs" --target "fuzz_$t" # only the fuzz targets are configured
-done
+      -DSOUP_TOPOLOGY_BUILD_FUZZERS=ON -DSOUP_TOPOLOGY_FUZZ_TARGETS="$(echo $targets | tr ' ' ';')" > /dev/null
+cmake --build "$build" -j "$jobs"
 
 # Seeds: ours, then the shared files of the target's format up to 64 KB (read in place, not copied
 # into the repository: some carry GPL or CC-BY-SA terms).
@@ -58,27 +59,42 @@ seeds_from_data() {
   esac
 }
 
-status=0
+# One target's run; its log and its result ("ok" or "failed") are left in $build.
+run_target() {
+  local t=$1 seeds="$build/seeds/$1" corpus="$build/corpus/$1" max_len extra=()
+  case $t in pipeline) max_len=512 ;; triangulate) max_len=16384 ;; *) max_len=65536 ;; esac
+  [ -f "fuzz/$t.dict" ] && extra+=("-dict=fuzz/$t.dict")
+  if "$build/fuzz/fuzz_$t" "$corpus" "$seeds" -max_total_time="$seconds" -max_len="$max_len" \
+       -timeout="$timeout" -rss_limit_mb="$rss_mb" -malloc_limit_mb=1024 -print_final_stats=1 \
+       ${extra[@]+"${extra[@]}"} -artifact_prefix="$build/artifacts/$t-" > "$build/fuzz_$t.log" 2>&1; then
+    echo ok > "$build/fuzz_$t.result"
+  else
+    echo failed > "$build/fuzz_$t.result"
+  fi
+}
+
 mkdir -p "$build/artifacts"
 for t in $targets; do
   seeds="$build/seeds/$t"
-  corpus="$build/corpus/$t"
-  rm -rf "$seeds"
-  mkdir -p "$seeds" "$corpus"
+  rm -rf "$seeds" "$build/fuzz_$t.result"
+  mkdir -p "$seeds" "$build/corpus/$t"
   cp fuzz/corpus/"$t"/* "$seeds"/
   for f in $(seeds_from_data "$t"); do cp "$f" "$seeds/data_$(basename "$f")"; done
-  case $t in pipeline) max_len=512 ;; triangulate) max_len=16384 ;; *) max_len=65536 ;; esac
-  extra=()
-  [ -f "fuzz/$t.dict" ] && extra+=("-dict=fuzz/$t.dict")
-  log="$build/fuzz_$t.log"
   echo "fuzz_$t: ${seconds} s, seeds: $(ls "$seeds" | wc -l) files"
-  if ! "$build/fuzz/fuzz_$t" "$corpus" "$seeds" -max_total_time="$seconds" -max_len="$max_len" \
-       -timeout="$timeout" -rss_limit_mb="$rss_mb" -malloc_limit_mb=1024 -print_final_stats=1 \
-       ${extra[@]+"${extra[@]}"} -artifact_prefix="$build/artifacts/$t-" > "$log" 2>&1; then
+  run_target "$t" &
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+done
+wait
+
+status=0
+for t in $targets; do
+  log="$build/fuzz_$t.log"
+  if [ "$(cat "$build/fuzz_$t.result" 2>/dev/null)" != ok ]; then
     echo "fuzz_$t FAILED, see $log:"
     grep -E "ERROR|invariant violated|SUMMARY|Test unit written" "$log" | head -20 || true
     status=1
   fi
+  echo "fuzz_$t:"
   grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" | sed "s/^/  /" || true
 done
 exit $status

@@ -6,6 +6,8 @@
 #   ASAN_BUILD_DIR  build folder (default build-asan)
 #   ASAN_TESTS      a CTest regular expression to run a subset (default: every test)
 #   JOBS            parallel jobs (default: nproc)
+#   ASAN_DEBUG_INFO debug information (default -g1: the line tables and function names that the
+#                   reports' stack traces print, not the variables; -g for a debugger session)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -15,7 +17,8 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 # g++ -O1 with the sanitizers warns about a pair built in CGAL's Epic_converter (a false positive
 # in a system header, absent from the Release build).
 flags="$flags -Wno-maybe-uninitialized"
-cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+debug_info=${ASAN_DEBUG_INFO:--g1}
+cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 $debug_info" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
       -DSOUP_TOPOLOGY_BUILD_TESTS=ON -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON \
       -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF -DSOUP_TOPOLOGY_BUILD_FUZZERS=OFF > /dev/null

@@ -32,6 +32,8 @@ std::size_t graph_view_scanned_triangles = 0;
 
 #include <gtest/gtest.h>
 
+#include "test_utilities.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -180,26 +182,10 @@ Soup grid_with_fins(int n)
 // ---------------------------------------------------------------------------------------------
 // The real meshes.
 
-fs::path scratch_dir()
-{
-  static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("soup_topology_graph_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" + std::to_string(std::rand()));
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
 bool read_soup(const fs::path& file, Soup& soup)
 {
-  fs::path path = file;
-  std::string name = file.filename().string();
-  if(file.extension() == ".xz") {
-    name = file.stem().string();
-    path = scratch_dir() / name;
-    const std::string cmd = "xz -dc '" + file.string() + "' > '" + path.string() + "'";
-    if(std::system(cmd.c_str()) != 0) return false;
-  }
+  const fs::path path = soup_test::decompressed_file(file.string());
+  const std::string name = path.filename().string();
   soup.name = fs::relative(file, SOUP_TOPOLOGY_DATA_DIR).string();
   const std::string ext = ST::IO::file_extension(name);
   if(ext == "wrl") {
@@ -598,8 +584,6 @@ TEST(AdjacencyGraphs, RealMeshes)
   }
   std::cout << "[ checked ] " << checked << " real meshes; skipped " << skipped << ":" << skipped_names << "\n";
   EXPECT_GT(checked, 30u);
-  std::error_code ec;
-  fs::remove_all(scratch_dir(), ec);
 }
 
 } // namespace

@@ -6,6 +6,8 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Octree.h>
 
+#include "test_utilities.h"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
@@ -253,28 +255,10 @@ void every_point_is_found(const std::vector<typename K::Point_3>& pts)
 
 std::vector<Xyz> read_mesh_vertices(const std::string& name)
 {
-  namespace fs = std::filesystem;
-  const fs::path src = fs::path(SOUP_TOPOLOGY_DATA_DIR) / "clean" / name;
-  fs::path off = src;
-  fs::path tmp;
-  if(src.extension() == ".xz")
-  {
-    tmp = fs::temp_directory_path() /
-          ("soup_topology_octree_test_" + std::to_string(std::random_device()()));
-    fs::create_directories(tmp);
-    off = tmp / src.stem();
-    const std::string cmd = "xz -dc '" + src.string() + "' > '" + off.string() + "'";
-    if(std::system(cmd.c_str()) != 0)
-    {
-      fs::remove_all(tmp);
-      return {};
-    }
-  }
+  const std::string off = soup_test::data_file("clean/" + name);
   std::vector<SC::Point_3> points;
   std::vector<std::vector<std::size_t>> polygons;
-  const bool ok = CGAL::IO::read_polygon_soup(off.string(), points, polygons);
-  if(!tmp.empty())
-    fs::remove_all(tmp);
+  const bool ok = CGAL::IO::read_polygon_soup(off, points, polygons);
   if(!ok)
     return {};
   std::vector<Xyz> r;

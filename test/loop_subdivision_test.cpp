@@ -17,6 +17,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_utilities.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -39,17 +41,7 @@ const double pi = 3.14159265358979323846;
 // Reads a mesh of the shared data folder, decompressing `.xz` files into a temporary folder.
 void read_data(const std::string& name, std::vector<Point>& points, std::vector<Triangle>& triangles)
 {
-  std::string path = std::string(SOUP_TOPOLOGY_DATA_DIR) + "/clean/" + name;
-  if(path.size() > 3 && path.compare(path.size() - 3, 3, ".xz") == 0) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "soup_topology_loop_test";
-    std::filesystem::create_directories(dir);
-    const std::string target = (dir / name.substr(0, name.size() - 3)).string();
-    if(!std::filesystem::exists(target)) {
-      const std::string command = "xz -dc '" + path + "' > '" + target + ".part' && mv '" + target + ".part' '" + target + "'";
-      ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    }
-    path = target;
-  }
+  const std::string path = soup_test::data_file("clean/" + name);
   ST::IO::read_triangle_soup(path, points, triangles);
   ASSERT_FALSE(triangles.empty()) << path;
 }

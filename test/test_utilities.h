@@ -22,25 +22,39 @@
 
 namespace soup_test {
 
-/// the path of a file of the shared data folder, decompressed into a temporary folder if it ends
-/// in `.xz` (once per process).
-inline std::string data_file(const std::string& relative)
+/// the path of a readable copy of the file `path`: `path` itself, or, if it ends in `.xz`, its
+/// decompressed copy in a temporary folder shared by the test and benchmark processes, made by
+/// the first process that asks for it (written under a unique name, then renamed, so that
+/// processes running in parallel never read a partial copy).
+inline std::string decompressed_file(const std::string& path)
 {
-  const std::string path = std::string(SOUP_TOPOLOGY_DATA_DIR) + "/" + relative;
-  if(path.size() < 3 || path.substr(path.size() - 3) != ".xz") return path;
+  if(path.size() < 3 || path.compare(path.size() - 3, 3, ".xz") != 0) return path;
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "soup_topology_test_data";
   fs::create_directories(dir);
-  std::string flat = relative.substr(0, relative.size() - 3);
+  // The name of the copy: the path below the shared data folder (or the whole path), flattened.
+  const std::string data_dir = std::string(SOUP_TOPOLOGY_DATA_DIR) + "/";
+  std::string flat = path.compare(0, data_dir.size(), data_dir) == 0 ? path.substr(data_dir.size()) : path;
+  flat.resize(flat.size() - 3);
   for(char& c : flat) if(c == '/') c = '_';
   const fs::path out = dir / flat;
   if(!fs::exists(out)) {
     const fs::path tmp = dir / (flat + ".part" + std::to_string(std::random_device{}()));
     const std::string cmd = "xz -dc '" + path + "' > '" + tmp.string() + "'";
-    if(std::system(cmd.c_str()) != 0) throw std::runtime_error("cannot decompress " + path);
+    if(std::system(cmd.c_str()) != 0) {
+      fs::remove(tmp);
+      throw std::runtime_error("cannot decompress " + path);
+    }
     fs::rename(tmp, out);
   }
   return out.string();
+}
+
+/// the path of a file of the shared data folder, decompressed by `decompressed_file()` if it ends
+/// in `.xz`.
+inline std::string data_file(const std::string& relative)
+{
+  return decompressed_file(std::string(SOUP_TOPOLOGY_DATA_DIR) + "/" + relative);
 }
 
 /// a fresh temporary folder for a test.
