@@ -486,9 +486,9 @@ TEST(BadInputPipeline, ToleranceLargerThanTheModelKeepsItValid)
   EXPECT_EQ(triangles.size(), 4u);
 }
 
-// Known bug found by fuzz_pipeline (fuzz/corpus/pipeline/chained_welds.bin), not fixed yet: a
-// representative that received points in one round is welded again in a later round, and its
-// points move 1.46 with a tolerance of 1. Enable with --gtest_also_run_disabled_tests.
+// Found by fuzz_pipeline (fuzz/corpus/pipeline/chained_welds.bin): a representative that
+// receives points in one round must not be welded again in a later round, or its points would
+// move 1.46 with a tolerance of 1.
 TEST(BadInputPipeline, NoPointMovesFartherThanTheToleranceOverRounds)
 {
   std::vector<Point> points{
