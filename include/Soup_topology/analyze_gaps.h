@@ -205,6 +205,141 @@ inline void suggest_tolerance(Gap_analysis& a)
 
 } // namespace internal
 
+namespace internal {
+
+/// the soup of `points` and `triangles` exactly welded into `pts` and `tris`: validated, equal
+/// points merged, collapsed triangles removed, and only the points some triangle uses kept.
+template <class Point, class PointRange, class TriangleRange, class PointMap>
+void exactly_welded_copy(const PointRange& points, const TriangleRange& triangles, const PointMap& pm,
+                         std::vector<Point>& pts, std::vector<std::array<std::size_t, 3>>& tris)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  tris.reserve(triangles.size());
+  std::size_t face_id = 0;
+  for(const auto& f : triangles) {
+    if(face_size(f) != 3)
+      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(face_size(f)) +
+                          " vertices; a triangle soup needs exactly 3");
+    tris.push_back({corner(f, 0, face_id), corner(f, 1, face_id), corner(f, 2, face_id)});
+    ++face_id;
+  }
+  check_triangle_soup(tris, points.size());
+  check_finite_points(points, pm);
+  pts.reserve(points.size());
+  for(const auto& e : points) {
+    const auto& p = get(pm, e);
+    if constexpr(std::is_same<std::decay_t<decltype(p)>, Point>::value)
+      pts.push_back(p);
+    else
+      pts.push_back(Point(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z()))));
+  }
+  merge_duplicate_points_and_map(pts, tris);
+  remove_collapsed_triangles(tris);
+  std::vector<std::size_t> index(pts.size(), static_cast<std::size_t>(-1));
+  std::size_t kept = 0;
+  for(const auto& t : tris)
+    for(std::size_t v : t) index[v] = 0;
+  for(std::size_t i = 0; i < pts.size(); ++i)
+    if(index[i] == 0) { index[i] = kept; pts[kept++] = pts[i]; }
+  pts.resize(kept);
+  for(auto& t : tris)
+    for(std::size_t& v : t) v = index[v];
+}
+
+/// appends to `border_features` the features of triangle `(p, q, r)` (index `t`) that involve its
+/// border edges: each border edge's length, and the height of the third corner over it when that
+/// corner is a border vertex too.
+template <class Point>
+void add_border_features(const Point& p, const Point& q, const Point& r, Adjacency_tables::size_type t,
+                         const Adjacency_tables& tables, std::vector<double>& border_features)
+{
+  const double corner[3][3] = {
+    {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())},
+    {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())},
+    {CGAL::to_double(r.x()), CGAL::to_double(r.y()), CGAL::to_double(r.z())}};
+  const double u[3] = {corner[1][0] - corner[0][0], corner[1][1] - corner[0][1], corner[1][2] - corner[0][2]};
+  const double v[3] = {corner[2][0] - corner[0][0], corner[2][1] - corner[0][1], corner[2][2] - corner[0][2]};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  std::array<bool, 3> on_border{false, false, false};
+  for(int i = 0; i < 3; ++i)
+    if(tables.is_border_edge(t, i)) on_border[static_cast<std::size_t>(i)] = on_border[static_cast<std::size_t>((i + 1) % 3)] = true;
+  for(int i = 0; i < 3; ++i) {
+    if(!tables.is_border_edge(t, i)) continue;
+    const double* a0 = corner[i];
+    const double* b0 = corner[(i + 1) % 3];
+    const double d[3] = {b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]};
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    border_features.push_back(length);
+    // The third corner is a border vertex: its distance to this border edge is a feature.
+    if(on_border[static_cast<std::size_t>((i + 2) % 3)] && length > 0) border_features.push_back(twice_area / length);
+  }
+}
+
+/// the feature sizes of the soup into `a`: shortest edges and smallest heights of the
+/// non-degenerate triangles, the border features, and the bound a tolerance must stay below.
+template <class Geom_traits>
+void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts,
+                           const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
+                           const Geom_traits& gt, Gap_analysis& a)
+{
+  using Point = typename Geom_traits::Point_3;
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::vector<double> shortest, heights, smallest, border_features;
+  shortest.reserve(tris.size());
+  heights.reserve(tris.size());
+  smallest.reserve(tris.size());
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const Point& p = pts[tris[t][0]];
+    const Point& q = pts[tris[t][1]];
+    const Point& r = pts[tris[t][2]];
+    if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
+    const Triangle_feature_sizes s = triangle_feature_sizes(p, q, r);
+    shortest.push_back(s.shortest_edge);
+    heights.push_back(s.smallest_height);
+    smallest.push_back(std::min(s.shortest_edge, s.smallest_height));
+    const auto tt = static_cast<Adjacency_tables::size_type>(t);
+    if(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))
+      add_border_features(p, q, r, tt, tables, border_features);
+  }
+  a.shortest_edges = size_distribution(shortest);
+  a.smallest_heights = size_distribution(heights);
+  std::sort(smallest.begin(), smallest.end());
+  a.feature_histogram = log_histogram<Gap_histogram_bin>(smallest);
+  a.border_features = size_distribution(border_features);
+  a.feature_bound = border_features.empty() ? std::numeric_limits<double>::infinity() : a.border_features.minimum / 3;
+}
+
+/// the gaps of the border vertices `border` into `a`, measured up to the median border edge
+/// length (at least the smallest border feature, so that every gap below the bound and the first
+/// one above it are measured when they exist).
+template <class Geom_traits>
+void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
+                  const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
+                  const std::vector<std::size_t>& border, const Geom_traits& gt, Gap_analysis& a)
+{
+  std::vector<double> border_lengths;
+  for(std::size_t t = 0; t < tris.size(); ++t)
+    for(int i = 0; i < 3; ++i)
+      if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
+        border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
+          pts[tris[t][static_cast<std::size_t>(i)]], pts[tris[t][static_cast<std::size_t>((i + 1) % 3)]]))));
+  std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
+                   border_lengths.end());
+  a.search_radius = border_lengths[border_lengths.size() / 2];
+  if(a.border_features.count > 0) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
+  const std::vector<Nearest_border_element> nearest = nearest_border_elements(pts, tables, border, a.search_radius, gt);
+  for(const Nearest_border_element& e : nearest) {
+    if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
+    else ++a.gaps_beyond_search_radius;
+  }
+  std::sort(a.gaps.begin(), a.gaps.end());
+  a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
+  a.gap_histogram = log_histogram<Gap_histogram_bin>(a.gaps);
+}
+
+} // namespace internal
+
 /// \ingroup PkgSoupTopologyGaps
 /// \brief measures the gaps between the borders of a triangle soup and the soup's own feature
 /// sizes, and suggests the snapping tolerance that closes the gaps without collapsing features.
@@ -253,45 +388,11 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
   using Geom_traits = typename NP_helper::Geom_traits;
   using Point = typename Geom_traits::Point_3;
-  using FT = typename Geom_traits::FT;
   const Geom_traits gt = NP_helper::get_geom_traits(np);
 
-  std::vector<std::array<std::size_t, 3>> tris;
-  tris.reserve(triangles.size());
-  std::size_t face_id = 0;
-  for(const auto& f : triangles) {
-    if(internal::face_size(f) != 3)
-      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(internal::face_size(f)) +
-                          " vertices; a triangle soup needs exactly 3");
-    tris.push_back({internal::corner(f, 0, face_id), internal::corner(f, 1, face_id), internal::corner(f, 2, face_id)});
-    ++face_id;
-  }
-  internal::check_triangle_soup(tris, points.size());
-  const auto pm = NP_helper::get_point_map(np);
-  internal::check_finite_points(points, pm);
   std::vector<Point> pts;
-  pts.reserve(points.size());
-  for(const auto& e : points) {
-    const auto& p = get(pm, e);
-    if constexpr(std::is_same<std::decay_t<decltype(p)>, Point>::value)
-      pts.push_back(p);
-    else
-      pts.push_back(Point(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z()))));
-  }
-  internal::merge_duplicate_points_and_map(pts, tris);
-  remove_collapsed_triangles(tris);
-  {
-    // Only the points some triangle uses.
-    std::vector<std::size_t> index(pts.size(), static_cast<std::size_t>(-1));
-    std::size_t kept = 0;
-    for(const auto& t : tris)
-      for(std::size_t v : t) index[v] = 0;
-    for(std::size_t i = 0; i < pts.size(); ++i)
-      if(index[i] == 0) { index[i] = kept; pts[kept++] = pts[i]; }
-    pts.resize(kept);
-    for(auto& t : tris)
-      for(std::size_t& v : t) v = index[v];
-  }
+  std::vector<std::array<std::size_t, 3>> tris;
+  internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
   const Adjacency_tables tables(tris, pts.size());
 
   Gap_analysis a;
@@ -301,78 +402,8 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   a.bounding_box_diagonal = internal::bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
   const std::vector<std::size_t> border = internal::border_vertices(tables);
   a.border_vertices = border.size();
-
-  // The features: every non-degenerate triangle, and the border features.
-  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
-  std::vector<double> shortest, heights, smallest, border_features;
-  shortest.reserve(tris.size());
-  heights.reserve(tris.size());
-  smallest.reserve(tris.size());
-  for(std::size_t t = 0; t < tris.size(); ++t) {
-    const Point& p = pts[tris[t][0]];
-    const Point& q = pts[tris[t][1]];
-    const Point& r = pts[tris[t][2]];
-    if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
-    const internal::Triangle_feature_sizes s = internal::triangle_feature_sizes(p, q, r);
-    shortest.push_back(s.shortest_edge);
-    heights.push_back(s.smallest_height);
-    smallest.push_back(std::min(s.shortest_edge, s.smallest_height));
-    const auto tt = static_cast<Adjacency_tables::size_type>(t);
-    bool any_border = false;
-    for(int i = 0; i < 3; ++i) any_border = any_border || tables.is_border_edge(tt, i);
-    if(!any_border) continue;
-    const double corner[3][3] = {
-      {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())},
-      {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())},
-      {CGAL::to_double(r.x()), CGAL::to_double(r.y()), CGAL::to_double(r.z())}};
-    const double u[3] = {corner[1][0] - corner[0][0], corner[1][1] - corner[0][1], corner[1][2] - corner[0][2]};
-    const double v[3] = {corner[2][0] - corner[0][0], corner[2][1] - corner[0][1], corner[2][2] - corner[0][2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    std::vector<char> on_border(3, 0);
-    for(int i = 0; i < 3; ++i)
-      if(tables.is_border_edge(tt, i)) on_border[static_cast<std::size_t>(i)] = on_border[static_cast<std::size_t>((i + 1) % 3)] = 1;
-    for(int i = 0; i < 3; ++i) {
-      if(!tables.is_border_edge(tt, i)) continue;
-      const double* a0 = corner[i];
-      const double* b0 = corner[(i + 1) % 3];
-      const double d[3] = {b0[0] - a0[0], b0[1] - a0[1], b0[2] - a0[2]};
-      const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      border_features.push_back(length);
-      // The third corner is a border vertex: its distance to this border edge is a feature.
-      if(on_border[static_cast<std::size_t>((i + 2) % 3)] && length > 0) border_features.push_back(twice_area / length);
-    }
-  }
-  a.shortest_edges = internal::size_distribution(shortest);
-  a.smallest_heights = internal::size_distribution(heights);
-  std::sort(smallest.begin(), smallest.end());
-  a.feature_histogram = internal::log_histogram<Gap_histogram_bin>(smallest);
-  a.border_features = internal::size_distribution(border_features);
-  a.feature_bound = border_features.empty() ? std::numeric_limits<double>::infinity() : a.border_features.minimum / 3;
-
-  // The gaps, up to the median border edge length (at least the smallest border feature, so every
-  // gap below the bound and the first one above it are measured when they exist).
-  if(!border.empty()) {
-    std::vector<double> border_lengths;
-    for(std::size_t t = 0; t < tris.size(); ++t)
-      for(int i = 0; i < 3; ++i)
-        if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
-          border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
-            pts[tris[t][static_cast<std::size_t>(i)]], pts[tris[t][static_cast<std::size_t>((i + 1) % 3)]]))));
-    std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
-                     border_lengths.end());
-    a.search_radius = border_lengths[border_lengths.size() / 2];
-    if(!border_features.empty()) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
-    const std::vector<internal::Nearest_border_element> nearest =
-      internal::nearest_border_elements(pts, tables, border, a.search_radius, gt);
-    for(const internal::Nearest_border_element& e : nearest) {
-      if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
-      else ++a.gaps_beyond_search_radius;
-    }
-    std::sort(a.gaps.begin(), a.gaps.end());
-    a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
-    a.gap_histogram = internal::log_histogram<Gap_histogram_bin>(a.gaps);
-  }
+  internal::measure_feature_sizes(pts, tris, tables, gt, a);
+  if(!border.empty()) internal::measure_gaps(pts, tris, tables, border, gt, a);
   internal::suggest_tolerance(a);
   return a;
 }
