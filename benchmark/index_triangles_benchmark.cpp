@@ -12,7 +12,10 @@
 // Benchmarks (CPU time; all reading is from a warm file-system cache):
 // - BM_read_file: the binary STL into a std::string, nothing else (the floor);
 // - BM_read_STL_triangles: the same plus Soup_topology::IO::read_STL_triangles;
-// - BM_index_and_tables: index_triangles + Adjacency_tables on the exploded soup in memory (ours);
+// - BM_index_and_tables: index_triangles + Adjacency_tables on the exploded soup in memory (ours),
+//   triangles in mesh order and shuffled (the worst case for every hash and table);
+// - BM_read_triangle_soup_and_tables: IO::read_triangle_soup of the binary STL (welded while it
+//   is decoded, the path of the command line) + Adjacency_tables, in both orders;
 // - BM_ours_from_file: the whole of our path from the file: read, read_STL_triangles,
 //   index_triangles, Adjacency_tables;
 // - BM_CGAL_merge_orient_to_mesh: the exploded soup as an indexed soup (3 points per triangle),
@@ -20,7 +23,9 @@
 //   PMP::polygon_soup_to_polygon_mesh into a Surface_mesh;
 // - BM_CGAL_read_STL_orient_to_mesh: CGAL::IO::read_STL of the file (it welds while reading),
 //   then orient_polygon_soup and polygon_soup_to_polygon_mesh.
-// Counters "*_ms" give the CPU time of each phase (last iteration). Targets (issue 2): the CGAL
+// Counters "*_ms" give the CPU time of each phase (last iteration); "peak_rss_bytes_per_triangle"
+// the peak resident memory of the process so far (getrusage) per input triangle: run one
+// benchmark per process (--benchmark_filter) to read it for that benchmark alone. Targets (issue 2): the CGAL
 // pipeline at least 15x slower than BM_index_and_tables, BM_index_and_tables at most 2.5x
 // BM_read_file.
 //
@@ -28,6 +33,7 @@
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/STL.h>
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/index_triangles.h>
 
 #include "../test/soup_generators.h"
@@ -42,12 +48,16 @@
 
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -93,10 +103,22 @@ void write_binary_STL(const std::string& file, const std::vector<Explicit_triang
 
 struct Input
 {
-  std::vector<Explicit_triangle> soup;     // exploded, float coordinates
-  std::string stl;                         // the same soup as a binary STL file
+  std::vector<Explicit_triangle> soup;     // exploded, float coordinates, triangles in mesh order
+  std::vector<Explicit_triangle> shuffled; // the same triangles in random order
+  std::string stl;                         // the soup as a binary STL file
+  std::string shuffled_stl;                // the shuffled soup as a binary STL file
   std::uintmax_t stl_bytes = 0;
 };
+
+enum class Order { mesh, shuffled };
+
+// The peak resident memory of the process so far, in bytes (getrusage).
+double peak_resident_bytes()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);
+}
 
 const Input& input()
 {
@@ -110,8 +132,14 @@ const Input& input()
     for(Point& p : points)
       p = Point(double(float(p.x())), double(float(p.y())), double(float(p.z())));
     r.soup = soup_test::explode(points, triangles);
-    r.stl = soup_test::temporary_folder("index_triangles_benchmark") + "/bunny_exploded.stl";
+    r.shuffled = r.soup;
+    std::mt19937_64 rng(2026);
+    std::shuffle(r.shuffled.begin(), r.shuffled.end(), rng);
+    const std::string folder = soup_test::temporary_folder("index_triangles_benchmark");
+    r.stl = folder + "/bunny_exploded.stl";
+    r.shuffled_stl = folder + "/bunny_exploded_shuffled.stl";
     write_binary_STL(r.stl, r.soup);
+    write_binary_STL(r.shuffled_stl, r.shuffled);
     r.stl_bytes = std::filesystem::file_size(r.stl);
     return r;
   }();
@@ -121,6 +149,7 @@ const Input& input()
 void set_common_counters(benchmark::State& state)
 {
   state.counters["triangles"] = static_cast<double>(input().soup.size());
+  state.counters["peak_rss_bytes_per_triangle"] = peak_resident_bytes() / static_cast<double>(input().soup.size());
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(input().stl_bytes));
 }
@@ -149,16 +178,17 @@ void BM_read_STL_triangles(benchmark::State& state)
 }
 BENCHMARK(BM_read_STL_triangles)->Unit(benchmark::kMillisecond)->Iterations(3);
 
-void BM_index_and_tables(benchmark::State& state)
+void BM_index_and_tables(benchmark::State& state, Order order)
 {
   const Input& in = input();
+  const std::vector<Explicit_triangle>& soup = order == Order::mesh ? in.soup : in.shuffled;
   double index_ms = 0, tables_ms = 0;
   std::size_t vertices = 0, border = 0;
   for(auto _ : state) {
     const double t0 = thread_cpu_ms();
     std::vector<Point> points;
     std::vector<Index_triangle> triangles;
-    ST::index_triangles(in.soup, points, triangles);
+    ST::index_triangles(soup, points, triangles);
     const double t1 = thread_cpu_ms();
     const ST::Adjacency_tables tables(triangles, points.size());
     const double t2 = thread_cpu_ms();
@@ -174,7 +204,33 @@ void BM_index_and_tables(benchmark::State& state)
   state.counters["vertices"] = static_cast<double>(vertices);
   state.counters["border_edges"] = static_cast<double>(border);
 }
-BENCHMARK(BM_index_and_tables)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_index_and_tables, mesh_order, Order::mesh)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_index_and_tables, shuffled, Order::shuffled)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The path of read_triangle_soup() (and of the command line): the binary STL welded while it is
+// decoded, then the tables.
+void BM_read_triangle_soup_and_tables(benchmark::State& state, Order order)
+{
+  const Input& in = input();
+  const std::string& file = order == Order::mesh ? in.stl : in.shuffled_stl;
+  double read_ms = 0, tables_ms = 0;
+  for(auto _ : state) {
+    const double t0 = thread_cpu_ms();
+    std::vector<Point> points;
+    std::vector<Index_triangle> triangles;
+    ST::IO::read_triangle_soup(file, points, triangles);
+    const double t1 = thread_cpu_ms();
+    const ST::Adjacency_tables tables(triangles, points.size());
+    read_ms = t1 - t0;
+    tables_ms = thread_cpu_ms() - t1;
+    benchmark::DoNotOptimize(tables.number_of_triangles());
+  }
+  set_common_counters(state);
+  state.counters["read_and_weld_ms"] = read_ms;
+  state.counters["tables_ms"] = tables_ms;
+}
+BENCHMARK_CAPTURE(BM_read_triangle_soup_and_tables, mesh_order, Order::mesh)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_read_triangle_soup_and_tables, shuffled, Order::shuffled)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_ours_from_file(benchmark::State& state)
 {

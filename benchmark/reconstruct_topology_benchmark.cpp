@@ -18,11 +18,16 @@
 // - BM_ours_to_mesh: reconstruct_topology(points, triangles, mesh, np) into a Surface_mesh;
 // - BM_CGAL_pipeline: PMP::repair_polygon_soup, orient_polygon_soup, polygon_soup_to_polygon_mesh,
 //   experimental::snap_borders (constant tolerance), stitch_borders; "*_ms" counters per phase.
+// - BM_read_and_reconstruct_STL: read_triangle_soup of a 1.2M-triangle jittered exploded binary
+//   STL, then the pipeline welding once (as the command line does) or twice (the public
+//   function on the soup read), triangles in mesh order and shuffled; "peak_rss_bytes_per_triangle"
+//   is the peak resident memory of the process so far (run it alone with --benchmark_filter).
 // Counter "border_edges": the border edges left (the input is a closed bunny: 0 is the answer).
 // Target (issue 5): ours closed, at least 10x faster than CGAL, no more border edges than CGAL.
 //
 // Run: reconstruct_topology_benchmark [--benchmark_filter=...]; data from SOUP_TOPOLOGY_DATA_DIR.
 
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
 
@@ -40,9 +45,16 @@
 
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
+#include <fstream>
+#include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -217,6 +229,112 @@ void BM_CGAL_pipeline(benchmark::State& state, Size size, Jitter jitter)
   state.counters["border_edges"] = static_cast<double>(border);
   state.counters["faces"] = static_cast<double>(faces);
 }
+
+// The peak resident memory of the process so far, in bytes (getrusage).
+double peak_resident_bytes()
+{
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  return 1024.0 * static_cast<double>(usage.ru_maxrss);
+}
+
+// The exploded soup of the command-line path: clean/bunny00.off split 1-to-4 twice (1,206,528
+// triangles), every triangle with its own corners, every corner jittered by up to 1e-6 x the
+// diagonal (float coordinates), written as a binary STL in mesh order and shuffled. The
+// tolerance is 1e-5 x the diagonal.
+struct STL_input
+{
+  std::string mesh_order_file, shuffled_file;
+  std::size_t triangles = 0;
+  double tolerance = 0;
+};
+
+void write_binary_STL(const std::string& file, const std::vector<std::array<Point, 3>>& soup)
+{
+  std::string bytes(80, ' ');
+  const std::uint32_t n = static_cast<std::uint32_t>(soup.size());
+  bytes.append(reinterpret_cast<const char*>(&n), 4);
+  for(const auto& t : soup) {
+    float f[12] = {};
+    for(std::size_t k = 0; k < 3; ++k)
+      for(int d = 0; d < 3; ++d) f[3 + 3 * k + static_cast<std::size_t>(d)] = static_cast<float>(t[k][d]);
+    bytes.append(reinterpret_cast<const char*>(f), sizeof f);
+    bytes.append(2, '\0');
+  }
+  std::ofstream out(file, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if(!out) throw std::runtime_error("cannot write " + file);
+}
+
+const STL_input& stl_input()
+{
+  static const STL_input in = [] {
+    std::vector<Point> points;
+    std::vector<Index_triangle> triangles;
+    soup_test::read_data_mesh("clean/bunny00.off.xz", points, triangles);
+    soup_test::subdivide_midpoints(points, triangles);
+    soup_test::subdivide_midpoints(points, triangles);
+    const double diag = diagonal(points);
+    std::vector<std::array<Point, 3>> soup = soup_test::explode(points, triangles);
+    std::mt19937_64 rng(2026);
+    const double j = 1e-6 * diag / std::sqrt(3.0);
+    std::uniform_real_distribution<double> d(-j, j);
+    for(auto& t : soup)
+      for(Point& p : t) p = Point(p.x() + d(rng), p.y() + d(rng), p.z() + d(rng));
+    STL_input r;
+    const std::string folder = soup_test::temporary_folder("reconstruct_topology_benchmark");
+    r.mesh_order_file = folder + "/bunny_exploded_jittered.stl";
+    r.shuffled_file = folder + "/bunny_exploded_jittered_shuffled.stl";
+    write_binary_STL(r.mesh_order_file, soup);
+    std::shuffle(soup.begin(), soup.end(), rng);
+    write_binary_STL(r.shuffled_file, soup);
+    r.triangles = soup.size();
+    r.tolerance = 1e-5 * diag;
+    return r;
+  }();
+  return in;
+}
+
+enum class Order { mesh, shuffled };
+enum class Weld { once, twice };
+
+// What `soup_topology repair FILE -o OUT --tolerance T` does before orienting and writing: the
+// file read (a binary STL welded while it is decoded), then the pipeline. `Weld::twice` is the
+// public reconstruct_topology(), which welds the soup read again; `Weld::once` trusts the
+// reader's weld, as the command line does. The label gives the file and the tolerance, for
+// timing the whole command-line process on the same input.
+void BM_read_and_reconstruct_STL(benchmark::State& state, Order order, Weld weld)
+{
+  const STL_input& in = stl_input();
+  const std::string& file = order == Order::mesh ? in.mesh_order_file : in.shuffled_file;
+  ST::Reconstruction_report report;
+  double read_ms = 0, repair_ms = 0;
+  for(auto _ : state) {
+    const double t0 = thread_cpu_ms();
+    std::vector<Point> points;
+    std::vector<Index_triangle> triangles;
+    ST::IO::read_triangle_soup(file, points, triangles);
+    const double t1 = thread_cpu_ms();
+    const auto np = CGAL::parameters::snapping_tolerance(in.tolerance);
+    report = weld == Weld::once ? ST::internal::reconstruct_exactly_welded_soup(points, triangles, np)
+                                : ST::reconstruct_topology(points, triangles, np);
+    read_ms = t1 - t0;
+    repair_ms = thread_cpu_ms() - t1;
+    benchmark::DoNotOptimize(triangles.data());
+  }
+  report_counters(state, report);
+  state.counters["triangles"] = static_cast<double>(in.triangles);
+  state.counters["read_ms"] = read_ms;
+  state.counters["repair_ms"] = repair_ms;
+  state.counters["peak_rss_bytes_per_triangle"] = peak_resident_bytes() / static_cast<double>(in.triangles);
+  state.SetLabel(file + " --tolerance " + std::to_string(in.tolerance));
+}
+BENCHMARK_CAPTURE(BM_read_and_reconstruct_STL, 1M_jitter_welded_once, Order::mesh, Weld::once)
+  ->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(BM_read_and_reconstruct_STL, 1M_jitter_welded_twice, Order::mesh, Weld::twice)
+  ->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK_CAPTURE(BM_read_and_reconstruct_STL, 1M_jitter_shuffled_welded_once, Order::shuffled, Weld::once)
+  ->Unit(benchmark::kMillisecond)->Iterations(2);
 
 #define SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(name, iterations)                                          \
   BENCHMARK_CAPTURE(name, 1M_exact, Size::one_million, Jitter::exact)                                   \
