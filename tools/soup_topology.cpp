@@ -128,19 +128,7 @@ public:
   }
 
 private:
-  static std::string quote(const std::string& s)
-  {
-    std::string out = "\"";
-    for(char c : s) {
-      if(c == '"' || c == '\\') { out += '\\'; out += c; }
-      else if(static_cast<unsigned char>(c) < 0x20) {
-        char buf[8];
-        std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-        out += buf;
-      } else out += c;
-    }
-    return out + "\"";
-  }
+  static std::string quote(const std::string& s) { return tool::json_string(s); }
   std::vector<std::pair<std::string, std::string>> items_;
 };
 
