@@ -251,6 +251,31 @@ TEST(GapAnalysis, RejectsInvalidSoups)
   EXPECT_THROW(ST::analyze_gaps(points, one), ST::Invalid_input);
 }
 
+// A 1 MB-class hostile soup: 20,000 separate triangles of edge ~0.5 scattered in the unit cube.
+// Every border vertex lies within the search radius (the median border edge) of a large part of
+// the others: listing them all is quadratic (minutes), so the analysis stops at its candidate
+// budget with a clear error instead.
+TEST(GapAnalysis, CrowdedBordersStopAtTheCandidateBudget)
+{
+  std::mt19937_64 random(7);
+  auto coordinate = [&random] { return double(random() >> 11) * 0x1.0p-53; };
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t t = 0; t < 20000; ++t) {
+    const double c[3] = {coordinate(), coordinate(), coordinate()};
+    for(std::size_t k = 0; k < 3; ++k)
+      points.emplace_back(c[0] + 0.6 * (coordinate() - 0.5), c[1] + 0.6 * (coordinate() - 0.5),
+                          c[2] + 0.6 * (coordinate() - 0.5));
+    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  try {
+    ST::analyze_gaps(points, triangles);
+    ADD_FAILURE() << "not refused";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("too crowded"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GapsCommand, PrintsTheAnalysisAndRepairsWithAutomaticTolerance)
 {
   if(cli().empty()) GTEST_SKIP() << "the tool is not built";

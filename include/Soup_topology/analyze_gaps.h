@@ -380,7 +380,10 @@ void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
 ///
 /// \returns a `Gap_analysis`.
 /// \throws Invalid_input on a face that is not a triangle, an index out of range, a repeated
-///         index in a face or a non-finite coordinate.
+///         index in a face or a non-finite coordinate; and when the border vertices are so
+///         crowded within the search radius that more than 2^24 + 256 per border vertex
+///         candidate pairs would have to be examined (the work stays bounded; give the
+///         tolerance by hand then).
 template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangles,
                           const NamedParameters& np = CGAL::parameters::default_values())

@@ -9,6 +9,7 @@
 #define SOUP_TOPOLOGY_INTERNAL_GAP_DISTANCES_H
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Octree.h>
 
 #include <CGAL/number_utils.h>
@@ -20,6 +21,7 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace Soup_topology {
@@ -59,12 +61,30 @@ inline std::vector<std::size_t> border_vertices(const Adjacency_tables& tables)
   return out;
 }
 
+/// the largest number of (vertex, element) candidates `nearest_border_elements()` examines for
+/// `n` border vertices: 2^24 plus 256 per vertex (real meshes need a few per vertex).
+inline std::size_t gap_candidate_budget(std::size_t n) { return (std::size_t(1) << 24) + 256 * n; }
+
+/// throws `Invalid_input` once `examined` exceeds the budget for `n` border vertices.
+inline void check_gap_candidate_budget(std::size_t examined, std::size_t n)
+{
+  if(examined > gap_candidate_budget(n))
+    throw Invalid_input("gap analysis: the " + std::to_string(n) + " border vertices are too crowded within the search "
+                        "radius (more than " + std::to_string(gap_candidate_budget(n)) +
+                        " candidate pairs); give the tolerance by hand");
+}
+
 /// for every vertex of `border` (indices into `points`), its nearest border element within
 /// `radius` that shares no triangle with it. The candidates are found by the octree's exact
 /// radius queries over the border vertices (a vertex-vertex self-join and one segment query per
 /// border edge); the distances are then evaluated by the kernel's `Compute_squared_distance_3`
 /// (exact squared distances with an exact kernel, correctly rounded to double otherwise, up to
 /// the rounding of the construction with Epick).
+///
+/// The candidates examined are counted: border vertices crowded within the radius of each other
+/// (a dense cluster, or many long border edges over one small region) would make the listing
+/// quadratic, so past `gap_candidate_budget(border.size())` candidates the analysis stops and
+/// throws `Invalid_input` (the caller then gives a tolerance by hand).
 template <class Geom_traits>
 std::vector<Nearest_border_element> nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
                                                             const Adjacency_tables& tables,
@@ -85,11 +105,14 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   const Octree<Geom_traits> tree(border_points, CGAL::Identity_property_map<Point>(), gt);
   typename Geom_traits::Compute_squared_distance_3 squared_distance = gt.compute_squared_distance_3_object();
   const FT r(radius);
+  std::size_t examined = 0;
 
   // Vertex to vertex: the self-join of the border vertices.
   tree.for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
     const std::size_t v = border[k];
     Nearest_border_element& best = nearest[k];
+    examined += near.size();
+    check_gap_candidate_budget(examined, border.size());
     for(std::size_t j : near) {
       const std::size_t w = border[j];
       if(w == v || share_a_triangle(tables, v, w)) continue;
@@ -114,6 +137,8 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
       const Point& b = points[tr[static_cast<std::size_t>((i + 1) % 3)]];
       near.clear();
       tree.vertices_near_segment(a, b, r, std::back_inserter(near));
+      examined += near.size();
+      check_gap_candidate_budget(examined, border.size());
       if(near.empty()) continue;
       const auto s = segment(a, b);
       for(std::size_t j : near) {
