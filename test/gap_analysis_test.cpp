@@ -251,6 +251,80 @@ TEST(GapAnalysis, RejectsInvalidSoups)
   EXPECT_THROW(ST::analyze_gaps(points, one), ST::Invalid_input);
 }
 
+// The nearest border element of every border vertex, from the two passes of
+// nearest_border_elements(), equals a brute-force search over all border vertices and edges with
+// the same exact radius test and the same preference rules, at radii where most vertices are
+// decided by the first pass and where few are.
+TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
+{
+  // A 12 x 12 grid of squares in four patches, each with its own copies of its points, every
+  // copy jittered by 10^u with u uniform in [-7, -1.5]: gaps from 1e-7 to beyond the grid step.
+  const std::size_t n = 12;
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> exponent(-7, -1.5), direction(-1, 1);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t patch = 0; patch < 4; ++patch) {
+    const std::size_t i0 = (patch % 2) * n / 2, j0 = (patch / 2) * n / 2;
+    const std::size_t first = points.size();
+    for(std::size_t i = 0; i <= n / 2; ++i)
+      for(std::size_t j = 0; j <= n / 2; ++j) {
+        const double size = std::pow(10.0, exponent(random));
+        const double x = double(i0 + i) / double(n), y = double(j0 + j) / double(n);
+        points.emplace_back(x + size * direction(random), y + size * direction(random),
+                            0.1 * std::sin(3 * x + 2 * y) + size * direction(random));
+      }
+    auto at = [&](std::size_t i, std::size_t j) { return first + i * (n / 2 + 1) + j; };
+    for(std::size_t i = 0; i < n / 2; ++i)
+      for(std::size_t j = 0; j < n / 2; ++j) {
+        triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+        triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      }
+  }
+  const ST::Adjacency_tables tables(triangles, points.size());
+  const std::vector<std::size_t> border = ST::internal::border_vertices(tables);
+  ASSERT_GT(border.size(), 40u);
+  const Epick gt;
+  auto squared_distance = gt.compute_squared_distance_3_object();
+  auto compare = gt.compare_squared_distance_3_object();
+  for(double radius : {1e-4, 0.01, 0.05, 0.2, 2.0}) {
+    const auto found = ST::internal::nearest_border_elements(points, tables, border, radius, gt);
+    ASSERT_EQ(found.size(), border.size());
+    const double r2 = radius * radius;
+    std::size_t decided = 0;
+    for(std::size_t k = 0; k < border.size(); ++k) {
+      const std::size_t v = border[k];
+      ST::internal::Nearest_border_element best;
+      for(std::size_t w : border) {
+        if(w == v || ST::internal::share_a_triangle(tables, v, w) ||
+           compare(points[v], points[w], r2) == CGAL::LARGER)
+          continue;
+        const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], points[w])));
+        if(d < best.distance || (d == best.distance && w < best.vertex)) { best.distance = d; best.vertex = w; }
+      }
+      for(std::size_t t = 0; t < triangles.size(); ++t)
+        for(int i = 0; i < 3; ++i) {
+          const auto tt = static_cast<ST::Adjacency_tables::size_type>(t);
+          const Triangle& tr = triangles[t];
+          if(!tables.is_border_edge(tt, i) || tr[0] == v || tr[1] == v || tr[2] == v) continue;
+          const Epick::Segment_3 s(points[tr[std::size_t(i)]], points[tr[std::size_t((i + 1) % 3)]]);
+          if(compare(points[v], s, r2) == CGAL::LARGER) continue;
+          const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], s)));
+          if(d < best.distance) { best.distance = d; best.vertex = std::size_t(-1); best.edge = {tt, i}; }
+        }
+      EXPECT_EQ(found[k].distance, best.distance) << "radius " << radius << ", vertex " << v;
+      EXPECT_EQ(found[k].vertex, best.vertex) << "radius " << radius << ", vertex " << v;
+      EXPECT_EQ(found[k].edge, best.edge) << "radius " << radius << ", vertex " << v;
+      if(best.distance < radius * ST::internal::first_gap_pass_fraction) ++decided;
+    }
+    // Both passes are exercised: some answers lie within the first radius, some beyond.
+    if(radius == 0.2) {
+      EXPECT_GT(decided, 0u);
+      EXPECT_LT(decided, border.size());
+    }
+  }
+}
+
 // A 1 MB-class hostile soup: 20,000 separate triangles of edge ~0.5 scattered in the unit cube.
 // Every border vertex lies within the search radius (the median border edge) of a large part of
 // the others: listing them all is quadratic (minutes), so the analysis stops at its candidate

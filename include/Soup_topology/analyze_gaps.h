@@ -138,10 +138,12 @@ inline Size_distribution size_distribution(std::vector<double>& sizes)
   Size_distribution d;
   d.count = sizes.size();
   if(sizes.empty()) return d;
-  std::sort(sizes.begin(), sizes.end());
-  d.minimum = sizes.front();
-  d.median = sizes[sizes.size() / 2];
-  d.maximum = sizes.back();
+  // Linear: a selection for the median, no sort (the sizes are left in an unspecified order).
+  const auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+  std::nth_element(sizes.begin(), middle, sizes.end());
+  d.median = *middle;
+  d.minimum = *std::min_element(sizes.begin(), middle + 1);
+  d.maximum = *std::max_element(middle, sizes.end());
   return d;
 }
 

@@ -21,7 +21,9 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace Soup_topology {
@@ -74,12 +76,148 @@ inline void check_gap_candidate_budget(std::size_t examined, std::size_t n)
                         " candidate pairs); give the tolerance by hand");
 }
 
+/// the search of `nearest_border_elements()`: the border vertices in an octree, the answers so
+/// far, and the number of candidates examined.
+template <class Geom_traits>
+class Nearest_border_search
+{
+  using Point = typename Geom_traits::Point_3;
+  using FT = typename Geom_traits::FT;
+  using Tree = Octree<Geom_traits>;
+
+public:
+  Nearest_border_search(const std::vector<Point>& points, const Adjacency_tables& tables,
+                        const std::vector<std::size_t>& border, const Geom_traits& gt)
+    : points_(points), tables_(tables), border_(border), gt_(gt),
+      squared_distance_(gt.compute_squared_distance_3_object()), nearest_(border.size())
+  {
+    border_points_.reserve(border.size());
+    for(std::size_t v : border) border_points_.push_back(points[v]);
+    tree_.emplace(border_points_, CGAL::Identity_property_map<Point>(), gt);
+  }
+
+  std::vector<Nearest_border_element>& nearest() { return nearest_; }
+
+  /// every border vertex's nearest element within `radius`: the self-join of the border
+  /// vertices, then one segment query per border edge over the whole tree.
+  void search_all(double radius)
+  {
+    const FT r(radius);
+    tree_->for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+      count_examined(near.size());
+      for(std::size_t j : near) offer_vertex(k, j);
+    });
+    std::vector<std::size_t> all(border_.size());
+    for(std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+    search_edges(*tree_, all, r);
+  }
+
+  /// the nearest element within `radius` of the border vertices `subset` (indices into
+  /// `border`, increasing) only, their earlier answers forgotten: one radius query per vertex of
+  /// the subset, and one segment query per border edge over an octree of the subset.
+  void search_subset(const std::vector<std::size_t>& subset, double radius)
+  {
+    const FT r(radius);
+    std::vector<std::size_t> near;
+    for(std::size_t k : subset) {
+      nearest_[k] = Nearest_border_element();
+      near.clear();
+      tree_->vertices_near_point(border_points_[k], r, std::back_inserter(near));
+      count_examined(near.size());
+      for(std::size_t j : near) offer_vertex(k, j);
+    }
+    std::vector<Point> subset_points;
+    subset_points.reserve(subset.size());
+    for(std::size_t k : subset) subset_points.push_back(border_points_[k]);
+    const Tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
+    search_edges(subset_tree, subset, r);
+  }
+
+private:
+  void count_examined(std::size_t n)
+  {
+    examined_ += n;
+    check_gap_candidate_budget(examined_, border_.size());
+  }
+
+  // The vertices first, the nearest one and among equally near ones the smallest index.
+  void offer_vertex(std::size_t k, std::size_t j)
+  {
+    const std::size_t v = border_[k];
+    const std::size_t w = border_[j];
+    if(w == v || share_a_triangle(tables_, v, w)) return;
+    const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], border_points_[j])));
+    Nearest_border_element& best = nearest_[k];
+    if(d < best.distance || (d == best.distance && w < best.vertex)) {
+      best.distance = d;
+      best.vertex = w;
+    }
+  }
+
+  // Then the border edges in the order of their triangles: an edge replaces the answer only if
+  // it is strictly nearer (a vertex at the same distance as an edge is preferred, its end point
+  // usually). An edge shares a triangle with a vertex when its (only) triangle contains the vertex.
+  // `tree` holds the points of the vertices `ks` (indices into `border`), in that order.
+  void search_edges(const Tree& tree, const std::vector<std::size_t>& ks, const FT& r)
+  {
+    std::vector<std::size_t> near;
+    typename Geom_traits::Construct_segment_3 segment = gt_.construct_segment_3_object();
+    for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
+      const auto tt = static_cast<Adjacency_tables::size_type>(t);
+      for(int i = 0; i < 3; ++i) {
+        if(!tables_.is_border_edge(tt, i)) continue;
+        const Adjacency_tables::Triangle& tr = tables_.triangle(tt);
+        const Point& a = points_[tr[static_cast<std::size_t>(i)]];
+        const Point& b = points_[tr[static_cast<std::size_t>((i + 1) % 3)]];
+        near.clear();
+        tree.vertices_near_segment(a, b, r, std::back_inserter(near));
+        count_examined(near.size());
+        if(near.empty()) continue;
+        const auto s = segment(a, b);
+        for(std::size_t m : near) {
+          const std::size_t k = ks[m];
+          const std::size_t v = border_[k];
+          if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
+          const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s)));
+          Nearest_border_element& best = nearest_[k];
+          if(d < best.distance) {
+            best.distance = d;
+            best.vertex = static_cast<std::size_t>(-1);
+            best.edge = Adjacency_tables::Edge{tt, i};
+          }
+        }
+      }
+    }
+  }
+
+  const std::vector<Point>& points_;
+  const Adjacency_tables& tables_;
+  const std::vector<std::size_t>& border_;
+  const Geom_traits& gt_;
+  typename Geom_traits::Compute_squared_distance_3 squared_distance_;
+  std::vector<Point> border_points_;
+  std::optional<Tree> tree_;
+  std::vector<Nearest_border_element> nearest_;
+  std::size_t examined_ = 0;
+};
+
+/// the radius of the first pass of `nearest_border_elements()`, as a fraction of the search
+/// radius: seams are usually far narrower than the border edges that bound the search.
+constexpr double first_gap_pass_fraction = 1.0 / 32;
+
 /// for every vertex of `border` (indices into `points`), its nearest border element within
 /// `radius` that shares no triangle with it. The candidates are found by the octree's exact
-/// radius queries over the border vertices (a vertex-vertex self-join and one segment query per
-/// border edge); the distances are then evaluated by the kernel's `Compute_squared_distance_3`
-/// (exact squared distances with an exact kernel, correctly rounded to double otherwise, up to
-/// the rounding of the construction with Epick).
+/// radius queries over the border vertices; the distances are then evaluated by the kernel's
+/// `Compute_squared_distance_3` (exact squared distances with an exact kernel, correctly rounded
+/// to double otherwise, up to the rounding of the construction with Epick).
+///
+/// Two passes give the answer of one search at `radius`. The first searches every vertex within
+/// `first_gap_pass_fraction * radius` (a self-join, and one segment query per border edge). A
+/// vertex whose nearest element found there lies clearly inside that smaller radius (below it by
+/// more than any rounding of the distances) has its answer: every element it did not see is
+/// farther, so it can neither be nearer nor tie. The other vertices are searched again at
+/// `radius`, alone. Narrow seams, the common case, are answered by the first pass, which lists far
+/// fewer candidates than a search at the median border edge length.
 ///
 /// The candidates examined are counted: border vertices crowded within the radius of each other
 /// (a dense cluster, or many long border edges over one small region) would make the listing
@@ -91,71 +229,22 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
                                                             const std::vector<std::size_t>& border,
                                                             double radius, const Geom_traits& gt)
 {
-  using Point = typename Geom_traits::Point_3;
-  using FT = typename Geom_traits::FT;
-  std::vector<Nearest_border_element> nearest(border.size());
-  if(border.empty()) return nearest;
-  std::vector<std::size_t> slot(points.size(), static_cast<std::size_t>(-1));
-  std::vector<Point> border_points;
-  border_points.reserve(border.size());
-  for(std::size_t k = 0; k < border.size(); ++k) {
-    slot[border[k]] = k;
-    border_points.push_back(points[border[k]]);
+  if(border.empty()) return {};
+  Nearest_border_search<Geom_traits> search(points, tables, border, gt);
+  const double first_radius = radius * first_gap_pass_fraction;
+  search.search_all(first_radius);
+  // Relative rounding of a distance evaluated in double is a few units in the last place.
+  const double decided_below = first_radius * (1 - 1e-9);
+  std::vector<std::size_t> undecided;
+  for(std::size_t k = 0; k < border.size(); ++k)
+    if(!(search.nearest()[k].distance < decided_below)) undecided.push_back(k);
+  if(2 * undecided.size() > border.size()) {
+    search.nearest().assign(border.size(), Nearest_border_element());
+    search.search_all(radius);
   }
-  const Octree<Geom_traits> tree(border_points, CGAL::Identity_property_map<Point>(), gt);
-  typename Geom_traits::Compute_squared_distance_3 squared_distance = gt.compute_squared_distance_3_object();
-  const FT r(radius);
-  std::size_t examined = 0;
-
-  // Vertex to vertex: the self-join of the border vertices.
-  tree.for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
-    const std::size_t v = border[k];
-    Nearest_border_element& best = nearest[k];
-    examined += near.size();
-    check_gap_candidate_budget(examined, border.size());
-    for(std::size_t j : near) {
-      const std::size_t w = border[j];
-      if(w == v || share_a_triangle(tables, v, w)) continue;
-      const double d = std::sqrt(CGAL::to_double(squared_distance(border_points[k], border_points[j])));
-      if(d < best.distance || (d == best.distance && w < best.vertex)) {
-        best.distance = d;
-        best.vertex = w;
-      }
-    }
-  });
-
-  // Vertex to edge: every border edge asks for the border vertices near it. An edge shares a
-  // triangle with a vertex when its (only) triangle contains the vertex.
-  std::vector<std::size_t> near;
-  typename Geom_traits::Construct_segment_3 segment = gt.construct_segment_3_object();
-  for(std::size_t t = 0; t < tables.number_of_triangles(); ++t) {
-    const auto tt = static_cast<Adjacency_tables::size_type>(t);
-    for(int i = 0; i < 3; ++i) {
-      if(!tables.is_border_edge(tt, i)) continue;
-      const Adjacency_tables::Triangle& tr = tables.triangle(tt);
-      const Point& a = points[tr[static_cast<std::size_t>(i)]];
-      const Point& b = points[tr[static_cast<std::size_t>((i + 1) % 3)]];
-      near.clear();
-      tree.vertices_near_segment(a, b, r, std::back_inserter(near));
-      examined += near.size();
-      check_gap_candidate_budget(examined, border.size());
-      if(near.empty()) continue;
-      const auto s = segment(a, b);
-      for(std::size_t j : near) {
-        const std::size_t v = border[j];
-        if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
-        const double d = std::sqrt(CGAL::to_double(squared_distance(border_points[j], s)));
-        Nearest_border_element& best = nearest[j];
-        // A vertex at the same distance as an edge is preferred (its end point, usually).
-        if(d < best.distance) {
-          best.distance = d;
-          best.vertex = static_cast<std::size_t>(-1);
-          best.edge = Adjacency_tables::Edge{tt, i};
-        }
-      }
-    }
-  }
-  return nearest;
+  else if(!undecided.empty())
+    search.search_subset(undecided, radius);
+  return std::move(search.nearest());
 }
 
 /// the shortest edge and the smallest height of a triangle, in double, and whether its corners
