@@ -7,11 +7,14 @@
 
 #include <Soup_topology/IO/write_html_report.h>
 
+#include "test_utilities.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -200,6 +203,45 @@ TEST(HtmlReport, RefusesAnIndexOutOfRange)
   std::vector<Triangle> triangles{{0, 1, 3}};
   std::ostringstream out;
   EXPECT_THROW(ST::IO::write_html_report(out, points, triangles, ST::IO::Html_report_content()), ST::Invalid_input);
+}
+
+std::string read_file(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The page of the command-line tool embeds exactly the object that --json prints.
+TEST(HtmlReportCli, PagesEmbedTheJsonOutput)
+{
+  const std::string cli = SOUP_TOPOLOGY_CLI;
+  if(cli.empty()) GTEST_SKIP() << "the tool is not built";
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(5, 1, 3, points, triangles);
+  const std::string dir = soup_test::temporary_folder("html_report_cli");
+  {
+    std::ofstream off(dir + "/grid.off");
+    off << "OFF\n" << points.size() << ' ' << triangles.size() << " 0\n";
+    for(const Point& p : points) off << p << '\n';
+    for(const Triangle& t : triangles) off << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  }
+  const std::string opening = "<script type=\"application/json\" id=\"report-json\">";
+  const auto [stats, stats_code] =
+    soup_test::run_command(cli + " stats '" + dir + "/grid.off' --json --html '" + dir + "/stats.html'");
+  ASSERT_EQ(stats_code, 0);
+  EXPECT_EQ(element_text(read_file(dir + "/stats.html"), opening) + "\n", stats);
+  const auto [repair, repair_code] = soup_test::run_command(
+    cli + " repair '" + dir + "/grid.off' -o '" + dir + "/out.off' --tolerance 0.01 --json --html '" + dir + "/repair.html'");
+  ASSERT_EQ(repair_code, 0);
+  EXPECT_EQ(element_text(read_file(dir + "/repair.html"), opening) + "\n", repair);
+  // The page may not replace the input.
+  const auto [refused, refused_code] =
+    soup_test::run_command(cli + " stats '" + dir + "/grid.off' --html '" + dir + "/grid.off' 2>/dev/null");
+  EXPECT_EQ(refused_code, 2);
+  EXPECT_TRUE(refused.empty());
 }
 
 } // namespace

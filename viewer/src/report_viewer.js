@@ -15,7 +15,9 @@ const marker_kinds = [
 ];
 
 function decode_base64(text, ArrayType) {
-  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
   return new ArrayType(bytes.buffer);
 }
 
@@ -172,8 +174,15 @@ function draw_histogram(bins, tolerance) {
       height: (height - bottom) - y(b.count), fill: closed ? '#33cc66' : '#7f9fbf' }, undefined);
   }
   add('line', { x1: left, y1: height - bottom, x2: width - 6, y2: height - bottom, stroke: '#ccc' });
-  for (let d = Math.ceil(lo); d <= Math.floor(hi); ++d) {
-    add('text', { x: x(10 ** d), y: height - 6, fill: '#ccc', 'font-size': 10, 'text-anchor': 'middle' }, `1e${d}`);
+  if (Math.floor(hi) - Math.ceil(lo) >= 1) {
+    for (let d = Math.ceil(lo); d <= Math.floor(hi); ++d) {
+      const anchor = x(10 ** d) > width - 20 ? 'end' : 'middle';
+      add('text', { x: x(10 ** d), y: height - 6, fill: '#ccc', 'font-size': 10, 'text-anchor': anchor }, `1e${d}`);
+    }
+  } else {
+    add('text', { x: left, y: height - 6, fill: '#ccc', 'font-size': 10 }, format_length(bins[0].lower));
+    add('text', { x: width - 6, y: height - 6, fill: '#ccc', 'font-size': 10, 'text-anchor': 'end' },
+      format_length(bins[bins.length - 1].upper));
   }
   add('text', { x: 2, y: 12, fill: '#ccc', 'font-size': 10 }, `${top_count}`);
   if (tolerance > 0 && Math.log10(tolerance) >= lo - 1 && Math.log10(tolerance) <= hi + 1) {

@@ -32,7 +32,7 @@ namespace IO {
 
 /// \ingroup PkgSoupTopologyIO
 /// the number of triangles above which the report page shows a simplified mesh.
-constexpr std::size_t default_html_report_display_triangle_limit = 500000;
+constexpr std::size_t default_html_report_display_triangle_limit = 300000;
 
 /// \ingroup PkgSoupTopologyIO
 /// the most marker positions of one kind written into a page.
