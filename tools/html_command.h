@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -78,7 +79,7 @@ void write_stats_html(const std::string& file, const std::string& input, const s
                       const Soup_topology::Soup_statistics& s, const std::string& report_json)
 {
   Soup_topology::IO::Html_report_content c;
-  c.title = "soup_topology stats " + input;
+  c.title = "soup_topology stats " + std::filesystem::path(input).filename().string();
   c.report_json = report_json;
   c.table_header = {"", "input"};
   c.table = {{"vertices", std::to_string(s.vertices)},
@@ -100,7 +101,7 @@ void write_repair_html(const std::string& file, const std::string& input_name, c
                        const Soup_topology::Reconstruction_report& r, const std::string& report_json)
 {
   Soup_topology::IO::Html_report_content c = Soup_topology::IO::html_report_content(r);
-  c.title = "soup_topology repair " + input_name;
+  c.title = "soup_topology repair " + std::filesystem::path(input_name).filename().string();
   c.report_json = report_json;
   add_input_gaps(c, input.points, input.triangles);
   std::vector<Point> kept(points);
