@@ -7,7 +7,8 @@
 // Fails (exit code 1) on a console error or an uncaught exception, on any request other than the
 // page itself, when <body data-ready="true"> is not reached within S seconds (default 10), on a
 // blank view, when red pixels (border edges) are seen with --red no or missed with --red yes, and
-// when the element `report-json` is not the object of the --json file. Prints one line per check.
+// when the element `report-json` is not the object of the --json file, and when a click on the
+// first listed hole does not move the view. Prints one line per check.
 
 import { createRequire } from 'node:module';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -164,6 +165,16 @@ try {
     `the view is not blank (${pixels.drawn} of ${pixels.total} pixels drawn, ${pixels.colours} colours)`);
   if (options.red === 'yes') check(pixels.red > 0, `red pixels (border edges) seen: ${pixels.red}`);
   if (options.red === 'no') check(pixels.red === 0, `no red pixel (no border edge): ${pixels.red}`);
+
+  // A click on the first hole (or ambiguous site) of the list flies the camera there.
+  const problem = await page.$('ol.problems li');
+  if (problem) {
+    await problem.click();
+    await page.waitForTimeout(1200);
+    const after = analyse_pixels(decode_png(await page.screenshot({ type: 'png' })), box);
+    check(after.drawn !== pixels.drawn || after.red !== pixels.red,
+      `a click on the first listed problem moves the view (${pixels.drawn} -> ${after.drawn} pixels drawn)`);
+  }
 
   if (options.json) {
     const embedded = await page.evaluate(() => document.getElementById('report-json').textContent);
