@@ -197,6 +197,21 @@ TEST(HtmlReportDecimation, PageOfALargeSoupIsSimplified)
   EXPECT_NE(data.find("\"decimated\": true"), std::string::npos);
 }
 
+TEST(HtmlReport, WritesTheNonManifoldEdges)
+{
+  // Three triangles on the edge (0, 1): one non-manifold edge, six border edges.
+  const std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, -1, 0), Point(0, 0, 1)};
+  const std::vector<Triangle> triangles{{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const std::string data =
+    element_text(page_of(points, triangles, ST::IO::Html_report_content()), "<script type=\"application/json\" id=\"viewer-data\">");
+  // Two 32-bit indices per edge, in base64: 8 bytes -> 12 characters.
+  const std::string key = "\"non_manifold_edges\": \"";
+  const std::size_t at = data.find(key);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(data.find('"', at + key.size()) - (at + key.size()), 12u);
+  EXPECT_EQ(data.find("\"holes_total\": 0,"), std::string::npos);
+}
+
 TEST(HtmlReport, RefusesAnIndexOutOfRange)
 {
   std::vector<Point> points(3, Point(0, 0, 0));
