@@ -77,6 +77,7 @@ struct Html_report_content
 /// \ingroup PkgSoupTopologyIO
 /// \brief the fields of `report` as one JSON object (its counts, under the names of the
 /// `Reconstruction_report` members).
+/// \param report the report of `reconstruct_topology()`
 inline std::string reconstruction_report_json(const Reconstruction_report& report)
 {
   std::string out = "{";
@@ -119,6 +120,7 @@ inline std::string reconstruction_report_json(const Reconstruction_report& repor
 /// \brief the content of the report page of a repair: the JSON of `report`, the before/after
 /// table, the tolerance and the counts of the marker kinds (without positions: a caller that
 /// records them with a visitor adds them).
+/// \param report the report of `reconstruct_topology()`
 inline Html_report_content html_report_content(const Reconstruction_report& report)
 {
   Html_report_content c;
