@@ -17,6 +17,7 @@
 #include <Soup_topology/soup_statistics.h>
 
 #include "gaps_command.h"
+#include "html_command.h"
 #include "output_files.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -62,14 +63,14 @@ struct Usage_error : std::runtime_error
 
 const char* usage_text =
   "usage:\n"
-  "  soup_topology stats FILE [--json]\n"
+  "  soup_topology stats FILE [--json] [--html REPORT.html]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology gaps FILE [--json]\n"
   "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
   "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
-  "                       [--orientation bound-volume|keep-input|outward]\n"
+  "                       [--orientation bound-volume|keep-input|outward] [--html REPORT.html]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
@@ -82,6 +83,8 @@ const char* usage_text =
   "      --orientation chooses how closed parts are turned: bound-volume (default: nested shells\n"
   "      alternate, outermost outward, so a part with a cavity keeps it), keep-input (every part\n"
   "      consistent as read keeps its orientation) or outward (every closed part outward).\n"
+  "      --html writes a self-contained HTML page with a 3D view of the result (stats: of the\n"
+  "      input), its border edges, the holes, the report and the gap histogram of the input.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -172,13 +175,20 @@ int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
-  for(const std::string& a : args) {
+  std::string html;
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
     if(a == "--json") json = true;
+    else if(a == "--html") {
+      if(i + 1 >= args.size()) throw Usage_error("stats: --html needs a value");
+      html = args[++i];
+    }
     else if(!a.empty() && a[0] == '-') throw Usage_error("stats: unknown option '" + a + "'");
     else if(file.empty()) file = a;
     else throw Usage_error("stats: more than one input file ('" + file + "' and '" + a + "')");
   }
   if(file.empty()) throw Usage_error("stats: no input file");
+  if(!html.empty()) tool::check_html_path(html, {file});
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
@@ -194,6 +204,7 @@ int run_stats(const std::vector<std::string>& args)
   add_read_counts(r, read);
   r.add("exact_duplicates", read.exact_duplicates);
   add_statistics(r, s, read.collapsed_triangles);
+  if(!html.empty()) tool::write_stats_html(html, file, points, triangles, s, r.json());
   print(json ? r.json() + "\n" : "soup_topology stats\n" + r.text());
   return 0;
 }
@@ -271,7 +282,7 @@ std::size_t count_self_intersecting_pairs(const std::vector<Point>& points, cons
 
 struct Repair_options
 {
-  std::string in, out, report_file, out_format;
+  std::string in, out, report_file, out_format, html_file;
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
@@ -296,6 +307,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     }
     else if(a == "--relative-tolerance") o.relative = parse_number(a, value());
     else if(a == "--report") o.report_file = value();
+    else if(a == "--html") o.html_file = value();
     else if(a == "--json") o.json = true;
     else if(a == "--check") o.check = true;
     else if(a == "--no-t-junctions") o.split = false;
@@ -404,6 +416,7 @@ int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
   check_repair_paths(o.in, o.out, o.report_file);
+  if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
 
   std::vector<Point> points;
@@ -416,6 +429,8 @@ int run_repair(const std::vector<std::string>& args)
     o.tolerance = chosen.tolerance;
     o.tolerance_choice = chosen.verdict + ": " + chosen.reasoning;
   }
+  tool::Html_input_soup<Point> html_input;
+  if(!o.html_file.empty()) html_input = {points, triangles};
   const ST::Reconstruction_report r = reconstruct(o, points, triangles);
   progress("repaired the soup");
 
@@ -432,6 +447,7 @@ int run_repair(const std::vector<std::string>& args)
   }
   const Report rep = repair_report(o, read, r, orientation, s, intersecting);
   write_repair_outputs(o, points, triangles, rep, progress);
+  if(!o.html_file.empty()) tool::write_repair_html(o.html_file, o.in, html_input, points, triangles, r, rep.json());
   print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
   const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
                       (intersecting && *intersecting > 0);

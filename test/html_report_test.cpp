@@ -1,0 +1,262 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Tests of <Soup_topology/IO/write_html_report.h>: the structure of the page, the embedded
+// report JSON, the absence of addresses outside the license text, the holes and the display
+// simplification of large soups.
+
+#include <Soup_topology/IO/write_html_report.h>
+
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+
+// An n x n grid of unit squares in the plane z = 0, two triangles each, without the squares
+// whose both coordinates lie in [hole_begin, hole_end).
+void grid(std::size_t n, std::size_t hole_begin, std::size_t hole_end, std::vector<Point>& points,
+          std::vector<Triangle>& triangles)
+{
+  for(std::size_t j = 0; j <= n; ++j)
+    for(std::size_t i = 0; i <= n; ++i) points.emplace_back(double(i), double(j), 0.0);
+  for(std::size_t j = 0; j < n; ++j)
+    for(std::size_t i = 0; i < n; ++i) {
+      if(i >= hole_begin && i < hole_end && j >= hole_begin && j < hole_end) continue;
+      const std::size_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+}
+
+std::string page_of(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
+                    const ST::IO::Html_report_content& content)
+{
+  std::ostringstream out;
+  ST::IO::write_html_report(out, points, triangles, content);
+  return out.str();
+}
+
+// The text of the element that starts with `opening`, up to its `</script>`.
+std::string element_text(const std::string& page, const std::string& opening)
+{
+  const std::size_t begin = page.find(opening);
+  if(begin == std::string::npos) return "<missing>";
+  const std::size_t text = begin + opening.size();
+  return page.substr(text, page.find("</script>", text) - text);
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what)
+{
+  std::size_t n = 0;
+  for(std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(HtmlReport, WritesOneCompletePage)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(4, 1, 2, points, triangles);
+  ST::IO::Html_report_content content;
+  content.title = "a <grid> & its hole";
+  const std::string page = page_of(points, triangles, content);
+  EXPECT_EQ(page.rfind("<!DOCTYPE html>\n<html", 0), 0u);
+  EXPECT_NE(page.find("<meta charset=\"utf-8\">"), std::string::npos);
+  EXPECT_NE(page.find("<title>a &lt;grid&gt; &amp; its hole</title>"), std::string::npos);
+  EXPECT_NE(page.find("<body data-ready=\"false\">"), std::string::npos);
+  EXPECT_NE(page.find("<canvas id=\"view\"></canvas>"), std::string::npos);
+  EXPECT_EQ(occurrences(page, "<script"), 4u);
+  EXPECT_EQ(occurrences(page, "</script>"), 4u);
+  EXPECT_NE(page.find("<script type=\"module\">"), std::string::npos);
+  EXPECT_EQ(page.substr(page.size() - 16), "</body>\n</html>\n");
+  const std::string data = element_text(page, "<script type=\"application/json\" id=\"viewer-data\">");
+  EXPECT_NE(data.find("\"holes_total\": 2,"), std::string::npos);  // the outer border and the hole
+  EXPECT_NE(data.find("\"decimated\": false"), std::string::npos);
+}
+
+TEST(HtmlReport, EmbedsTheReportJsonAsGiven)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(2, 0, 0, points, triangles);
+  ST::IO::Html_report_content content;
+  content.report_json = "{\"input\": \"a b.stl\", \"tolerance\": 0.1, \"closed\": false, \"border_edges\": 8}";
+  const std::string opening = "<script type=\"application/json\" id=\"report-json\">";
+  EXPECT_EQ(element_text(page_of(points, triangles, content), opening), content.report_json);
+  // An end tag inside a string is written `<\/`: the same JSON value, the element is not closed.
+  content.report_json = "{\"input\": \"</script>.stl\"}";
+  EXPECT_EQ(element_text(page_of(points, triangles, content), opening), "{\"input\": \"<\\/script>.stl\"}");
+}
+
+TEST(HtmlReport, HasNoAddressOutsideTheLicense)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(3, 0, 0, points, triangles);
+  std::string page = page_of(points, triangles, ST::IO::Html_report_content());
+  const std::string opening = "<script type=\"text/plain\" id=\"viewer-license\">";
+  const std::size_t license = page.find(opening);
+  ASSERT_NE(license, std::string::npos);
+  page.erase(license, page.find("</script>", license) - license);
+  EXPECT_EQ(page.find("http://"), std::string::npos);
+  EXPECT_EQ(page.find("https://"), std::string::npos);
+}
+
+TEST(HtmlReport, ContentOfAReconstructionReport)
+{
+  ST::Reconstruction_report r;
+  r.tolerance = 0.25;
+  r.border_edges_before = 12;
+  r.border_edges_after = 3;
+  r.snapped_vertices = 5;
+  r.ambiguous_sites = 2;
+  const ST::IO::Html_report_content c = ST::IO::html_report_content(r);
+  EXPECT_EQ(c.tolerance, 0.25);
+  EXPECT_EQ(c.welded_vertices.count, 5u);
+  EXPECT_EQ(c.ambiguous_sites.count, 2u);
+  ASSERT_EQ(c.table_header.size(), 3u);
+  for(const auto& row : c.table) EXPECT_EQ(row.size(), 3u);
+  EXPECT_NE(c.report_json.find("\"border_edges_after\": 3"), std::string::npos);
+  EXPECT_NE(c.report_json.find("\"tolerance\": 0.25"), std::string::npos);
+  EXPECT_NE(c.report_json.find("\"closed\": false"), std::string::npos);
+}
+
+TEST(HtmlReportHoles, LoopsWithTheirLengthAndSize)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(6, 2, 4, points, triangles);  // a 6 x 6 square with a 2 x 2 hole
+  std::vector<ST::internal::Html_point> pts;
+  for(const Point& p : points) pts.push_back({p.x(), p.y(), p.z()});
+  const ST::Adjacency_tables tables(triangles, points.size());
+  const auto border = ST::internal::html_edge_vertices(tables, tables.border_edges());
+  const auto holes = ST::internal::html_holes(pts, border);
+  ASSERT_EQ(holes.size(), 2u);
+  EXPECT_EQ(holes[0].edges, 24u);
+  EXPECT_DOUBLE_EQ(holes[0].length, 24.0);
+  EXPECT_DOUBLE_EQ(holes[0].size, std::sqrt(72.0));
+  EXPECT_EQ(holes[1].edges, 8u);
+  EXPECT_DOUBLE_EQ(holes[1].length, 8.0);
+  EXPECT_DOUBLE_EQ(holes[1].center[0], 3.0);
+  EXPECT_DOUBLE_EQ(holes[1].center[1], 3.0);
+}
+
+TEST(HtmlReportDecimation, StaysWithinTheLimitAndKeepsTheBorders)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(150, 70, 80, points, triangles);  // 44,800 triangles, a hole of 10 x 10 squares
+  std::vector<ST::internal::Html_point> pts;
+  for(const Point& p : points) pts.push_back({p.x(), p.y(), p.z()});
+  std::vector<ST::internal::Html_triangle> tris;
+  for(const Triangle& t : triangles)
+    tris.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+  const ST::Adjacency_tables tables(triangles, points.size());
+  const auto border = ST::internal::html_edge_vertices(tables, tables.border_edges());
+  for(const std::size_t limit : {5000u, 20000u}) {
+    const auto display = ST::internal::html_display_mesh(pts, tris, border, {}, limit);
+    EXPECT_TRUE(display.decimated);
+    EXPECT_LE(display.triangles.size(), limit);
+    EXPECT_GE(display.triangles.size(), limit / 10);
+    // The border and the triangles along it are kept: every border edge is still drawn, at its place.
+    ASSERT_EQ(display.border_edges.size(), border.size());
+    for(std::size_t i = 0; i < border.size(); ++i)
+      for(int c = 0; c < 3; ++c) EXPECT_EQ(display.points[display.border_edges[i]][c], pts[border[i]][c]);
+    for(const auto& t : display.triangles)
+      for(std::uint32_t v : t) EXPECT_LT(v, display.points.size());
+  }
+  const auto whole = ST::internal::html_display_mesh(pts, tris, border, {}, tris.size());
+  EXPECT_FALSE(whole.decimated);
+  EXPECT_EQ(whole.triangles.size(), tris.size());
+}
+
+TEST(HtmlReportDecimation, PageOfALargeSoupIsSimplified)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(100, 0, 0, points, triangles);
+  ST::IO::Html_report_content content;
+  content.display_triangle_limit = 4000;
+  const std::string page = page_of(points, triangles, content);
+  const std::string data = element_text(page, "<script type=\"application/json\" id=\"viewer-data\">");
+  EXPECT_NE(data.find("\"soup_triangles\": 20000,"), std::string::npos);
+  EXPECT_NE(data.find("\"decimated\": true"), std::string::npos);
+}
+
+TEST(HtmlReport, WritesTheNonManifoldEdges)
+{
+  // Three triangles on the edge (0, 1): one non-manifold edge, six border edges.
+  const std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, -1, 0), Point(0, 0, 1)};
+  const std::vector<Triangle> triangles{{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const std::string data =
+    element_text(page_of(points, triangles, ST::IO::Html_report_content()), "<script type=\"application/json\" id=\"viewer-data\">");
+  // Two 32-bit indices per edge, in base64: 8 bytes -> 12 characters.
+  const std::string key = "\"non_manifold_edges\": \"";
+  const std::size_t at = data.find(key);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(data.find('"', at + key.size()) - (at + key.size()), 12u);
+  EXPECT_EQ(data.find("\"holes_total\": 0,"), std::string::npos);
+}
+
+TEST(HtmlReport, RefusesAnIndexOutOfRange)
+{
+  std::vector<Point> points(3, Point(0, 0, 0));
+  std::vector<Triangle> triangles{{0, 1, 3}};
+  std::ostringstream out;
+  EXPECT_THROW(ST::IO::write_html_report(out, points, triangles, ST::IO::Html_report_content()), ST::Invalid_input);
+}
+
+std::string read_file(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The page of the command-line tool embeds exactly the object that --json prints.
+TEST(HtmlReportCli, PagesEmbedTheJsonOutput)
+{
+  const std::string cli = SOUP_TOPOLOGY_CLI;
+  if(cli.empty()) GTEST_SKIP() << "the tool is not built";
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  grid(5, 1, 3, points, triangles);
+  const std::string dir = soup_test::temporary_folder("html_report_cli");
+  {
+    std::ofstream off(dir + "/grid.off");
+    off << "OFF\n" << points.size() << ' ' << triangles.size() << " 0\n";
+    for(const Point& p : points) off << p << '\n';
+    for(const Triangle& t : triangles) off << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  }
+  const std::string opening = "<script type=\"application/json\" id=\"report-json\">";
+  const auto [stats, stats_code] =
+    soup_test::run_command(cli + " stats '" + dir + "/grid.off' --json --html '" + dir + "/stats.html'");
+  ASSERT_EQ(stats_code, 0);
+  EXPECT_EQ(element_text(read_file(dir + "/stats.html"), opening) + "\n", stats);
+  const auto [repair, repair_code] = soup_test::run_command(
+    cli + " repair '" + dir + "/grid.off' -o '" + dir + "/out.off' --tolerance 0.01 --json --html '" + dir + "/repair.html'");
+  ASSERT_EQ(repair_code, 0);
+  EXPECT_EQ(element_text(read_file(dir + "/repair.html"), opening) + "\n", repair);
+  // The page may not replace the input.
+  const auto [refused, refused_code] =
+    soup_test::run_command(cli + " stats '" + dir + "/grid.off' --html '" + dir + "/grid.off' 2>/dev/null");
+  EXPECT_EQ(refused_code, 2);
+  EXPECT_TRUE(refused.empty());
+}
+
+} // namespace
