@@ -19,17 +19,8 @@
 #   SOUP_TOPOLOGY_DATA_DIR  the shared data folder (default ../shared/data)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
-# clang and libFuzzer from Debian.
-missing=()
-for p in clang libclang-rt-14-dev libfuzzer-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+# The build packages, clang and libFuzzer from Debian.
+bash scripts/setup.sh fuzz
 
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 seconds=${FUZZ_SECONDS:-30}

@@ -47,6 +47,10 @@ std::size_t graph_view_scanned_triangles = 0;
 #include <utility>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace Adjacency_graphs_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -587,3 +591,5 @@ TEST(AdjacencyGraphs, RealMeshes)
 }
 
 } // namespace
+
+} // namespace Adjacency_graphs_test

@@ -34,6 +34,10 @@
 #include <string>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace Adjacency_tables_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -1014,3 +1018,5 @@ TEST(BadInput, Issue20NaNCoordinatesAreRefused)
 }
 
 } // namespace
+
+} // namespace Adjacency_tables_test

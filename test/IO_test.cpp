@@ -40,6 +40,10 @@
 #include <utility>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace IO_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -1159,3 +1163,5 @@ TEST(ReadTriangleSoup, Issue13NumbersParseAsTheCLibraryParsesThem)
 }
 
 } // namespace
+
+} // namespace IO_test

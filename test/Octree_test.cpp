@@ -29,6 +29,10 @@
 #include <utility>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace Octree_test {
+
 namespace ST = Soup_topology;
 
 using SC = CGAL::Simple_cartesian<double>;
@@ -647,3 +651,5 @@ TEST(Octree, SelfJoinMatchesPointQueries)
   check_self_join<Epeck>(clustered_points(500, 8), 16);
   check_self_join<SC>(uniform_points(2000, 9), 8);
 }
+
+} // namespace Octree_test

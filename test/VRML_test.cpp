@@ -29,6 +29,10 @@
 #include <utility>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace VRML_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -878,3 +882,5 @@ TEST(TriangulatePolygon, WorkCapFansTheRest)
 }
 
 } // namespace
+
+} // namespace VRML_test

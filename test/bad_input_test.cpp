@@ -48,6 +48,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace bad_input_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -1154,3 +1158,5 @@ TEST_F(HostileInput, Issue21WrittenMeshDoesNotDependOnTheTriangleOrder)
     EXPECT_EQ(reports[trial], reports[0]) << "trial " << trial;
   }
 }
+
+} // namespace bad_input_test

@@ -25,6 +25,10 @@
 #include <string>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace gap_analysis_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -385,3 +389,5 @@ TEST(GapsCommand, PrintsTheAnalysisAndRepairsWithAutomaticTolerance)
 }
 
 } // namespace
+
+} // namespace gap_analysis_test

@@ -27,6 +27,10 @@
 #include <string>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace loop_subdivision_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -607,3 +611,5 @@ TEST(LoopLevel, RefinedEdgesAreConsistent)
     }
   }
 }
+
+} // namespace loop_subdivision_test

@@ -36,6 +36,10 @@
 #include <utility>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace orient_triangle_soup_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -567,3 +571,5 @@ TEST(TriangleSoupToFaceGraph, Issue20NonFinitePointIsRefused)
 }
 
 } // namespace
+
+} // namespace orient_triangle_soup_test

@@ -33,6 +33,18 @@
 #include <set>
 #include <vector>
 
+// The headers of the issue-20 part below, included here too: no #include may be inside the
+// namespace that holds the whole file.
+#include <CGAL/Point_set_3.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Simple_cartesian.h>
+#include <Soup_topology/internal/triangulate_polygon.h>
+
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace reconstruct_topology_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -938,3 +950,5 @@ TEST(ReconstructTopology, Issue13ShuffledExplodedSoupGivesTheSameSurface)
 }
 
 } // namespace issue13
+
+} // namespace reconstruct_topology_test

@@ -23,6 +23,10 @@
 #include <set>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace robustness_regression_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -189,3 +193,5 @@ TEST(RobustnessRegression, EpickDecidesAsEpeck)
   ST::reconstruct_topology(exact, t2, CGAL::parameters::snapping_tolerance(Epeck::FT(eps)));
   EXPECT_EQ(geometry(inexact, t1), geometry(exact, t2));
 }
+
+} // namespace robustness_regression_test

@@ -36,6 +36,10 @@
 #include <tuple>
 #include <vector>
 
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace snap_vertices_test {
+
 namespace {
 
 namespace ST = Soup_topology;
@@ -871,3 +875,5 @@ TEST(SnapVertices, Issue19VisitorIsCopiedUnlessGivenByReference)
 }
 
 } // namespace
+
+} // namespace snap_vertices_test
