@@ -5,6 +5,7 @@
 // seams hold T-junction points within the tolerance of an edge's end point, repaired under the
 // two policies of `small_features`.
 
+#include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 
@@ -387,6 +388,54 @@ TEST(SmallFeaturesPolicy, RealMeshesNoWorseThanRefusing)
     if(collapsed.report.small_features_resolved == 0 && collapsed.report.small_feature_collapsed_triangles == 0) {
       EXPECT_EQ(geometry(collapsed.points, collapsed.triangles), geometry(refused.points, refused.triangles));
     }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Degenerate triangles of the input (zero area) removed by edge flips
+// (`internal::flip_degenerate_triangles()`, not yet called by the pipeline).
+
+double total_area(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  double area = 0;
+  for(const Triangle& t : triangles)
+    area += std::sqrt(CGAL::to_double(CGAL::squared_area(points[t[0]], points[t[1]], points[t[2]])));
+  return area;
+}
+
+TEST(SmallFeaturesDegenerate, FlipsRemoveZeroAreaTrianglesWithoutMovingTheSurface)
+{
+  // A triangle (0, 1, 2) whose corner 2 lies on its edge [0,1], and the triangle (1, 0, 3)
+  // across that edge: the flip gives (1, 2, 3) and (2, 0, 3).
+  std::vector<Point> points = {Point(0, 0, 0), Point(2, 0, 0), Point(1, 0, 0), Point(1, -1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {1, 0, 3}};
+  const auto counts = ST::internal::flip_degenerate_triangles(points, triangles, Epick());
+  EXPECT_EQ(counts.flipped, 1u);
+  EXPECT_EQ(counts.remaining, 0u);
+  EXPECT_EQ(triangles, (std::vector<Triangle>{{1, 2, 3}, {2, 0, 3}}));
+}
+
+TEST(SmallFeaturesDegenerate, RealDefectFiles)
+{
+  for(const char* file :
+      {"real_defects/admesh/conveyor/nearby-bad.stl.xz", "real_defects/admesh/conveyor/fill-holes-bad.stl.xz",
+       "real_defects/openscad/issue945f.stl", "real_defects/openscad/issue1580-zero-area-triangle.stl",
+       "real_defects/openscad/issue1580-back-to-back.stl", "real_defects/openscad/issue1580-back-to-back2.stl"}) {
+    SCOPED_TRACE(file);
+    auto [points, triangles] = load<Point>(file);
+    const std::size_t before = count_degenerate(points, triangles);
+    const auto [border, non_manifold] = soup_test::count_border_and_non_manifold_edges(triangles);
+    const double area = total_area(points, triangles);
+    const std::size_t n = triangles.size();
+    const auto counts = ST::internal::flip_degenerate_triangles(points, triangles, Epick());
+    std::cout << file << ": " << before << " degenerate, " << counts.flipped << " flipped, " << counts.remaining
+              << " left\n";
+    EXPECT_GT(before, 0u);
+    EXPECT_EQ(counts.flipped + counts.remaining, before);
+    EXPECT_EQ(count_degenerate(points, triangles), counts.remaining);
+    EXPECT_EQ(triangles.size(), n);
+    EXPECT_EQ(soup_test::count_border_and_non_manifold_edges(triangles), std::make_pair(border, non_manifold));
+    EXPECT_NEAR(total_area(points, triangles), area, 1e-9 * area);
   }
 }
 
