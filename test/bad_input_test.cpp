@@ -476,14 +476,16 @@ TEST(BadInputPipeline, HugeToleranceIsRefusedNotACrash)
 
 TEST(BadInputPipeline, ToleranceLargerThanTheModelKeepsItValid)
 {
-  // Not an error: every weld that would degenerate or flip a triangle is refused (and counted).
+  // Not an error: every weld that would degenerate or flip a triangle is refused (and counted),
+  // under Small_features::REFUSE (the default collapses a model smaller than the tolerance).
   // Two unit squares side by side with a gap of 0.01, tolerance 10 times the model.
   std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
                             Point(1.01, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1.01, 1, 0)};
   std::vector<Triangle> triangles{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
   const std::vector<Point> input = points;
   const ST::Reconstruction_report r =
-    ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(30.0));
+    ST::reconstruct_topology(points, triangles, ST::parameters::small_features(ST::Small_features::REFUSE,
+                                                                               CGAL::parameters::snapping_tolerance(30.0)));
   EXPECT_GT(r.refused_welds(), 0u);
   EXPECT_LE(r.max_displacement, 30.0);
   for(const Triangle& t : triangles) EXPECT_FALSE(CGAL::collinear(points[t[0]], points[t[1]], points[t[2]]));
@@ -619,7 +621,8 @@ TEST_F(BadInputCli, InvalidTolerances)
 TEST_F(BadInputCli, ToleranceLargerThanTheModelIsRefusedWeldByWeld)
 {
   const std::string input = soup_test::data_file("cgal_repair/data_stitching/pinched.off");
-  const Cli_result r = run_cli("repair '" + input + "' -o '" + output + "' --tolerance 100 --json");
+  const Cli_result r =
+    run_cli("repair '" + input + "' -o '" + output + "' --tolerance 100 --small-features refuse --json");
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_GT(soup_test::json_integer(r.output, "refused_welds"), 0);
   EXPECT_EQ(soup_test::json_integer(r.output, "output_triangles"), 102);

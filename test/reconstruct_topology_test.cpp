@@ -550,10 +550,14 @@ void expect_same_report(const ST::Reconstruction_report& a, const ST::Reconstruc
 
 TEST(ReconstructTopology, Issue20VisitorCalledForEveryWeldAndRefusal)
 {
+  // Under Small_features::REFUSE the sliver (6, 7, 8) is refused and the refusal told; the
+  // default collapses it (small_features_test.cpp).
   Weld_soup s;
   Counting_visitor v;
-  const ST::Reconstruction_report r =
-    ST::reconstruct_topology(s.points, s.triangles, CGAL::parameters::snapping_tolerance(1e-3).visitor(std::ref(v)));
+  const ST::Reconstruction_report r = ST::reconstruct_topology(
+    s.points, s.triangles,
+    ST::parameters::small_features(ST::Small_features::REFUSE,
+                                   CGAL::parameters::snapping_tolerance(1e-3).visitor(std::ref(v))));
   EXPECT_EQ(r.snapped_vertices, 2u);
   EXPECT_GE(r.refused_welds(), 1u);
   EXPECT_EQ(v.merges.size(), r.snapped_vertices);
@@ -567,8 +571,10 @@ TEST(ReconstructTopology, Issue20VisitorCalledForEveryWeldAndRefusal)
   }
   // Given by copy, the visitor is still called (on the copy): the result is the same.
   Weld_soup s2;
-  const ST::Reconstruction_report r2 =
-    ST::reconstruct_topology(s2.points, s2.triangles, CGAL::parameters::snapping_tolerance(1e-3).visitor(Counting_visitor()));
+  const ST::Reconstruction_report r2 = ST::reconstruct_topology(
+    s2.points, s2.triangles,
+    ST::parameters::small_features(ST::Small_features::REFUSE,
+                                   CGAL::parameters::snapping_tolerance(1e-3).visitor(Counting_visitor())));
   EXPECT_EQ(s2.triangles, s.triangles);
   EXPECT_EQ(r2.snapped_vertices, r.snapped_vertices);
 }
@@ -641,7 +647,9 @@ TEST(ReconstructTopology, Issue20AnyGeomTraitsAndChainedParameters)
   const ST::Reconstruction_report r3 = ST::reconstruct_topology(
     s3.points, s3.triangles, ST::parameters::relative_tolerance(1e-4, CGAL::parameters::geom_traits(SC())));
   expect_same_report(r2, r3);
-  EXPECT_EQ(r2.snapped_vertices, 2u);
+  // 3 into 1, 4 into 2, and 7 into 6: the sliver (6, 7, 8) collapses (Small_features::COLLAPSE).
+  EXPECT_EQ(r2.snapped_vertices, 3u);
+  EXPECT_EQ(r2.small_feature_collapsed_triangles, 1u);
   // Exact points through an inexact traits, and inexact points through exact traits.
   std::vector<Epeck::Point_3> exact;
   Weld_soup s4;

@@ -331,7 +331,8 @@ TEST(Kernels, EpickAndEpeckGiveTheSameTopology)
 
 TEST(Refusals, VerticesOfOneTriangleAreNeverMerged)
 {
-  // A thin open triangle whose two vertices are 1e-4 apart, with a tolerance of 1e-3.
+  // A thin open triangle whose two vertices are 1e-4 apart, with a tolerance of 1e-3, under
+  // Small_features::REFUSE (the default collapses the triangle: small_features_test.cpp).
   std::vector<Point> points = {Point(0, 0, 0), Point(1e-4, 0, 0), Point(0.5, 1, 0)};
   std::vector<Triangle> triangles = {{0, 1, 2}};
   struct Recorder
@@ -340,8 +341,10 @@ TEST(Refusals, VerticesOfOneTriangleAreNeverMerged)
     void on_merge(std::size_t, std::size_t) { ADD_FAILURE() << "no merge expected"; }
     void on_refusal(std::size_t v, std::size_t r, ST::Refusal_reason why) { refusals.emplace_back(v, r, why); }
   } recorder;
-  const ST::Snap_report r = ST::snap_vertices(points, triangles,
-                                              CGAL::parameters::snapping_tolerance(1e-3).visitor(std::ref(recorder)));
+  const ST::Snap_report r = ST::snap_vertices(
+    points, triangles,
+    ST::parameters::small_features(ST::Small_features::REFUSE,
+                                   CGAL::parameters::snapping_tolerance(1e-3).visitor(std::ref(recorder))));
   EXPECT_EQ(r.merged_vertices, 0u);
   EXPECT_EQ(r.refused_same_triangle, 1u);
   EXPECT_EQ(r.short_edges, 1u);
@@ -355,12 +358,14 @@ TEST(Refusals, VerticesOfOneTriangleAreNeverMerged)
 TEST(Refusals, NoChainingBeyondTheTolerance)
 {
   // Three border vertices on a line, 0.8 apart, tolerance 1: A-B and B-C are within it, A-C not.
-  // Each belongs to its own triangle. A (smallest) takes B; C stays; the site is ambiguous.
+  // Each belongs to its own triangle. A (smallest) takes B; C stays; the site is ambiguous. The
+  // triangles' top edges are as long as the tolerance: refused, not collapsed.
   std::vector<Point> points = {Point(0, 0, 0), Point(0.8, 0, 0), Point(1.6, 0, 0),
                                Point(0, 5, 0), Point(1, 5, 0), Point(0.8, -5, 0), Point(1.8, -5, 0),
                                Point(1.6, 5, 1), Point(2.6, 5, 1)};
   std::vector<Triangle> triangles = {{0, 4, 3}, {1, 5, 6}, {2, 8, 7}};
-  const ST::Snap_report r = ST::snap_vertices(points, triangles, CGAL::parameters::snapping_tolerance(1.0));
+  const ST::Snap_report r = ST::snap_vertices(
+    points, triangles, ST::parameters::small_features(ST::Small_features::REFUSE, CGAL::parameters::snapping_tolerance(1.0)));
   EXPECT_LE(r.max_displacement, 1.0);
   EXPECT_EQ(triangles[1][0], 0u);   // B merged into A
   EXPECT_EQ(triangles[2][0], 2u);   // C not merged (it is 1.6 from A)
@@ -399,14 +404,22 @@ TEST(BadInput, TolerancesAndMismatchedTables)
 
 TEST(LargeTolerance, DoesNotDestroyTheModel)
 {
-  // The ADMesh block with a tolerance as large as the whole part: triangles are kept valid.
-  auto [points, triangles] = read_stl<Point>("real_defects/admesh/block/nearby-bad.stl");
-  const ST::Snap_report r = ST::snap_vertices(points, triangles, CGAL::parameters::snapping_tolerance(100.0));
-  EXPECT_GT(r.refused(), 0u);
-  Epick::Collinear_3 collinear;
-  for(const Triangle& t : triangles) {
-    EXPECT_NE(t[0], t[1]);
-    EXPECT_FALSE(collinear(points[t[0]], points[t[1]], points[t[2]]));
+  // The ADMesh block with a tolerance as large as the whole part: the triangles kept are valid.
+  // Under Small_features::REFUSE merges are refused; under COLLAPSE the part is a feature
+  // smaller than the tolerance and its triangles collapse.
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    auto [points, triangles] = read_stl<Point>("real_defects/admesh/block/nearby-bad.stl");
+    const ST::Snap_report r = ST::snap_vertices(
+      points, triangles, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(100.0)));
+    if(policy == ST::Small_features::REFUSE) {
+      EXPECT_GT(r.refused(), 0u);
+    }
+    EXPECT_LE(r.max_displacement, 100.0);
+    Epick::Collinear_3 collinear;
+    for(const Triangle& t : triangles) {
+      EXPECT_NE(t[0], t[1]);
+      EXPECT_FALSE(collinear(points[t[0]], points[t[1]], points[t[2]]));
+    }
   }
 }
 
@@ -815,14 +828,20 @@ TEST(SnapVertices, Issue19DecisionsArePinnedOnAJitteredFandisk)
 
 TEST(SnapVertices, Issue19DecisionsArePinnedOnAlstom)
 {
-  // A CAD model welded at 1e-3 of its diagonal: refusals of every geometric kind and short edges.
+  // A CAD model welded at 1e-3 of its diagonal: refusals of every geometric kind and short
+  // edges under Small_features::REFUSE; under COLLAPSE the short edges among the border vertices
+  // collapse, which closes 7 more border edges and leaves no refusal.
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
   const double tol = 1e-3 * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
-  const Pinned_weld expected{231, 18, 16, 17, 0, 2, 5, 33, 217, 0.876195, 15065967198876123558ull};
-  for(unsigned seed = 0; seed <= 2; ++seed) {
-    SCOPED_TRACE("permutation " + std::to_string(seed));
+  const Pinned_weld refused{231, 18, 16, 17, 0, 2, 5, 33, 217, 0.876195, 15065967198876123558ull};
+  const Pinned_weld collapsed{231, 26, 20, 0, 0, 0, 3, 33, 210, 0.876195, 897685457778439310ull};
+  for(unsigned k = 0; k < 6; ++k) {
+    const unsigned seed = k % 3;
+    const ST::Small_features policy = k < 3 ? ST::Small_features::REFUSE : ST::Small_features::COLLAPSE;
+    const Pinned_weld& expected = k < 3 ? refused : collapsed;
+    SCOPED_TRACE("permutation " + std::to_string(seed) + (k < 3 ? ", refuse" : ", collapse"));
     std::mt19937 rng(seed);
     std::vector<std::size_t> relabel(points.size());
     std::iota(relabel.begin(), relabel.end(), 0);
@@ -835,7 +854,8 @@ TEST(SnapVertices, Issue19DecisionsArePinnedOnAlstom)
     std::vector<Point> p(points.size());
     for(std::size_t i = 0; i < points.size(); ++i) p[relabel[i]] = points[i];
     for(Triangle& x : t) for(std::size_t& v : x) v = relabel[v];
-    const ST::Snap_report r = ST::snap_vertices(p, t, CGAL::parameters::snapping_tolerance(tol));
+    const ST::Snap_report r =
+      ST::snap_vertices(p, t, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(tol)));
     expect_pinned(r, geometry_digest(p, t), expected);
   }
 }
@@ -860,14 +880,18 @@ TEST(SnapVertices, Issue19VisitorIsCopiedUnlessGivenByReference)
   Counting_visitor by_value;
   by_value.shared_merges = &merges_seen_by_copy;
   std::vector<Triangle> t1 = triangles;
-  const ST::Snap_report r1 =
-    ST::snap_vertices(points, t1, CGAL::parameters::visitor(by_value).snapping_tolerance(tol));
+  // Small_features::REFUSE, for refusals to be told.
+  const ST::Snap_report r1 = ST::snap_vertices(
+    points, t1,
+    ST::parameters::small_features(ST::Small_features::REFUSE, CGAL::parameters::visitor(by_value).snapping_tolerance(tol)));
   EXPECT_EQ(by_value.merges, 0u);
   EXPECT_EQ(merges_seen_by_copy, r1.merged_vertices);
   Counting_visitor by_reference;
   std::vector<Triangle> t2 = triangles;
-  const ST::Snap_report r2 =
-    ST::snap_vertices(points, t2, CGAL::parameters::snapping_tolerance(tol).visitor(std::ref(by_reference)));
+  const ST::Snap_report r2 = ST::snap_vertices(
+    points, t2,
+    ST::parameters::small_features(ST::Small_features::REFUSE,
+                                   CGAL::parameters::snapping_tolerance(tol).visitor(std::ref(by_reference))));
   EXPECT_EQ(by_reference.merges, r2.merged_vertices);
   EXPECT_EQ(by_reference.refusals, r2.refused());
   EXPECT_GT(r2.refused(), 0u);

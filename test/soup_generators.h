@@ -5,7 +5,9 @@
 // - `subdivide_midpoints`: 1-to-4 split of every triangle (to reach a million triangles);
 // - `t_junction_soup`: the mesh cut into patches whose shared borders are tessellated
 //   differently on the two sides (T-junctions), with every patch owning its own copies of its
-//   vertices, each copy jittered.
+//   vertices, each copy jittered;
+// - `small_feature_soup`: the same with patches around random seeds, and split points placed
+//   within a given distance of an edge's end point (features below the tolerance).
 
 #ifndef SOUP_TOPOLOGY_TEST_SOUP_GENERATORS_H
 #define SOUP_TOPOLOGY_TEST_SOUP_GENERATORS_H
@@ -16,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <random>
 #include <unordered_map>
@@ -123,6 +126,117 @@ T_junction_soup<Point> t_junction_soup(const std::vector<Point>& points, const s
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> d(-jitter, jitter);
   std::map<std::pair<int, std::size_t>, std::size_t> copy;
+  for(const auto& [tr, pt] : tris) {
+    Index_triangle out;
+    for(int k = 0; k < 3; ++k) {
+      auto ins = copy.emplace(std::make_pair(pt, tr[k]), soup.points.size());
+      if(ins.second) {
+        const Point& p = all[tr[k]];
+        soup.points.push_back(jitter > 0 ? Point(p.x() + d(rng), p.y() + d(rng), p.z() + d(rng)) : p);
+      }
+      out[k] = ins.first->second;
+    }
+    soup.triangles.push_back(out);
+  }
+  return soup;
+}
+
+/// A soup whose seams hold features smaller than the tolerance (issue 18).
+template <class Point>
+struct Small_feature_soup
+{
+  std::vector<Point> points;
+  std::vector<Index_triangle> triangles;
+  std::size_t patches = 0;
+  std::size_t t_junctions = 0;            ///< border edges split on one side of a seam
+  std::size_t near_end_t_junctions = 0;   ///< of which the split point lies within `near_distance` of an end point
+};
+
+/// cuts the closed mesh (points, triangles) into `patches` patches (every triangle goes to the
+/// nearest of `patches` seed triangles, by centroid, the seeds drawn from `seed`); on every
+/// other edge shared by two patches, the triangle on the side of the smaller patch id is split
+/// at a point of the edge while its neighbour keeps the whole edge (a T-junction). A fraction
+/// `near_fraction` of the split points lie at a distance in [0.1, 0.5] `near_distance` from an
+/// end point of the edge (drawn at random), the others at a parameter in [0.3, 0.7]. Then every
+/// patch gets its own copies of its vertices, each coordinate moved by a uniform random amount
+/// in [-jitter, jitter]. The split points lie on the edges of the input mesh: the unperturbed
+/// surface is the input's. Deterministic for a given `seed`.
+template <class Point>
+Small_feature_soup<Point> small_feature_soup(const std::vector<Point>& points, const std::vector<Index_triangle>& triangles,
+                                             std::size_t patches, double jitter, double near_fraction,
+                                             double near_distance, unsigned seed)
+{
+  Small_feature_soup<Point> soup;
+  soup.patches = patches;
+  std::mt19937_64 rng(seed);
+  auto centroid = [&](std::size_t t) {
+    std::array<double, 3> c{{0, 0, 0}};
+    for(std::size_t v : triangles[t]) {
+      c[0] += CGAL::to_double(points[v].x()) / 3;
+      c[1] += CGAL::to_double(points[v].y()) / 3;
+      c[2] += CGAL::to_double(points[v].z()) / 3;
+    }
+    return c;
+  };
+  std::vector<std::array<double, 3>> seeds;
+  std::uniform_int_distribution<std::size_t> pick(0, triangles.size() - 1);
+  for(std::size_t k = 0; k < patches; ++k) seeds.push_back(centroid(pick(rng)));
+  std::vector<std::size_t> patch(triangles.size(), 0);
+  for(std::size_t t = 0; t < triangles.size(); ++t) {
+    const std::array<double, 3> c = centroid(t);
+    double best = std::numeric_limits<double>::infinity();
+    for(std::size_t k = 0; k < seeds.size(); ++k) {
+      const double d = (c[0] - seeds[k][0]) * (c[0] - seeds[k][0]) + (c[1] - seeds[k][1]) * (c[1] - seeds[k][1]) +
+                       (c[2] - seeds[k][2]) * (c[2] - seeds[k][2]);
+      if(d < best) { best = d; patch[t] = k; }
+    }
+  }
+  // Seam edges, in the order of their sorted end points.
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<std::size_t, int>>> edges;
+  for(std::size_t t = 0; t < triangles.size(); ++t)
+    for(int i = 0; i < 3; ++i) {
+      const std::size_t a = triangles[t][i], b = triangles[t][(i + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].emplace_back(t, i);
+    }
+  std::vector<int> split_edge(triangles.size(), -1);
+  std::size_t seam = 0;
+  for(const auto& kv : edges) {
+    if(kv.second.size() != 2) continue;
+    const auto [t0, i0] = kv.second[0];
+    const auto [t1, i1] = kv.second[1];
+    if(patch[t0] == patch[t1]) continue;
+    if(seam++ % 2 != 0) continue;
+    const std::size_t t = patch[t0] < patch[t1] ? t0 : t1;
+    if(split_edge[t] == -1) split_edge[t] = patch[t0] < patch[t1] ? i0 : i1;
+  }
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Point> all = points;
+  std::vector<std::pair<Index_triangle, std::size_t>> tris; // (triangle, patch)
+  for(std::size_t t = 0; t < triangles.size(); ++t) {
+    const Index_triangle& tr = triangles[t];
+    const int i = split_edge[t];
+    if(i < 0) { tris.push_back({tr, patch[t]}); continue; }
+    const std::size_t a = tr[i], b = tr[(i + 1) % 3], c = tr[(i + 2) % 3];
+    const Point& p = points[a];
+    const Point& q = points[b];
+    const double dx = CGAL::to_double(q.x() - p.x()), dy = CGAL::to_double(q.y() - p.y()),
+                 dz = CGAL::to_double(q.z() - p.z());
+    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+    double s = 0.3 + 0.4 * unit(rng);
+    const bool near = unit(rng) < near_fraction && length > 2 * near_distance;
+    if(near) {
+      const double from_end = (0.1 + 0.4 * unit(rng)) * near_distance / length;
+      s = unit(rng) < 0.5 ? from_end : 1 - from_end;
+      ++soup.near_end_t_junctions;
+    }
+    all.push_back(Point(p.x() + s * (q.x() - p.x()), p.y() + s * (q.y() - p.y()), p.z() + s * (q.z() - p.z())));
+    const std::size_t m = all.size() - 1;
+    tris.push_back({{a, m, c}, patch[t]});
+    tris.push_back({{m, b, c}, patch[t]});
+    ++soup.t_junctions;
+  }
+  std::uniform_real_distribution<double> d(-jitter, jitter);
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> copy;
   for(const auto& [tr, pt] : tris) {
     Index_triangle out;
     for(int k = 0; k < 3; ++k) {

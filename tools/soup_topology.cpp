@@ -2,9 +2,12 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // soup_topology: the command-line face of the library.
-//   soup_topology stats FILE [--json]
-//   soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]
+//   soup_topology stats FILE [--json] [--html REPORT.html]
+//   soup_topology gaps FILE [--json]
+//   soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]
 //                        [--json] [--check] [--no-t-junctions] [--self-intersections]
+//                        [--orientation P] [--small-features collapse|refuse] [--html REPORT.html]
+// (the usage text below describes every option)
 // Exit codes: 0 success, 1 `--check` found the written result not closed, not manifold or (with
 //             --self-intersections) self-intersecting, 2 bad input, arguments or a file that
 //             cannot be written (message on stderr).
@@ -70,7 +73,8 @@ const char* usage_text =
   "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
   "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
-  "                       [--orientation bound-volume|keep-input|outward] [--html REPORT.html]\n"
+  "                       [--orientation bound-volume|keep-input|outward]\n"
+  "                       [--small-features collapse|refuse] [--html REPORT.html]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
@@ -83,6 +87,9 @@ const char* usage_text =
   "      --orientation chooses how closed parts are turned: bound-volume (default: nested shells\n"
   "      alternate, outermost outward, so a part with a cavity keeps it), keep-input (every part\n"
   "      consistent as read keeps its orientation) or outward (every closed part outward).\n"
+  "      --small-features chooses what becomes of two vertices of one triangle within the\n"
+  "      tolerance (a sliver): collapse (default: merged, the triangle removed) or refuse (left\n"
+  "      apart and reported as ambiguous).\n"
   "      --html writes a self-contained HTML page with a 3D view of the result (stats: of the\n"
   "      input), its border edges, the holes, the report and the gap histogram of the input.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
@@ -217,6 +224,13 @@ ST::Orientation_policy parse_orientation_policy(const std::string& text)
   throw Usage_error("repair: --orientation takes bound-volume, keep-input or outward, not '" + text + "'");
 }
 
+ST::Small_features parse_small_features(const std::string& text)
+{
+  if(text == "collapse") return ST::Small_features::COLLAPSE;
+  if(text == "refuse") return ST::Small_features::REFUSE;
+  throw Usage_error("repair: --small-features takes collapse or refuse, not '" + text + "'");
+}
+
 double parse_number(const std::string& option, const std::string& text)
 {
   char* end = nullptr;
@@ -288,6 +302,7 @@ struct Repair_options
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
   std::string tolerance_choice;  // its verdict and reasoning, for the report
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
+  ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
 };
 
 Repair_options parse_repair_arguments(const std::vector<std::string>& args)
@@ -313,6 +328,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--no-t-junctions") o.split = false;
     else if(a == "--self-intersections") o.self_intersections = true;
     else if(a == "--orientation") o.orientation_policy = parse_orientation_policy(value());
+    else if(a == "--small-features") o.small_features = parse_small_features(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -330,13 +346,15 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
 // it a second time.
 ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles)
 {
-  const auto split = ST::parameters::do_split_t_junctions(o.split);
+  const auto split = ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(o.split));
   if(o.tolerance)
     return ST::internal::reconstruct_exactly_welded_soup(
-      points, triangles, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
+      points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
+                                                          o.split, CGAL::parameters::snapping_tolerance(*o.tolerance))));
   if(o.relative)
     return ST::internal::reconstruct_exactly_welded_soup(
-      points, triangles, ST::parameters::do_split_t_junctions(o.split, ST::parameters::relative_tolerance(*o.relative)));
+      points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
+                                                          o.split, ST::parameters::relative_tolerance(*o.relative))));
   return ST::internal::reconstruct_exactly_welded_soup(points, triangles, split);
 }
 
@@ -375,6 +393,9 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   rep.add("refused_splits", r.refused_splits);
   rep.add("ambiguous", r.ambiguous_sites + r.ambiguous_t_junctions);
   rep.add("short_edges", r.short_edges);
+  rep.add_string("small_features", r.small_features == ST::Small_features::COLLAPSE ? "collapse" : "refuse");
+  rep.add("small_features_resolved", r.small_features_resolved);
+  rep.add("small_feature_collapsed_triangles", r.small_feature_collapsed_triangles);
   rep.add("t_junctions", r.t_junctions);
   rep.add("split_triangles", r.split_triangles);
   rep.add("rounds", r.rounds);

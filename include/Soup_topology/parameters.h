@@ -50,6 +50,33 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
 /// rounds; it is not meant for users and not listed in the manual.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(fixed_vertices_t, fixed_vertices)
 
+/// \ingroup PkgSoupTopologyWelding
+/// \brief what the weld does with a feature smaller than the tolerance: two vertices of one
+/// triangle within the tolerance of each other (a short edge, a sliver), which the minimum
+/// feature separation of Hoffmann, Hopcroft and Karasick excludes. The named parameter
+/// `small_features` chooses; `Small_features::COLLAPSE` is the default (the manual, section
+/// "Features smaller than the tolerance", says why).
+enum class Small_features
+{
+  REFUSE,   ///< two vertices of one triangle are never merged; the site is reported as ambiguous
+  COLLAPSE  ///< they are merged like any two vertices within the tolerance (Milenkovic's
+            ///< normalisation), and the triangles whose corners merge are removed
+};
+
+/// what `snap_vertices()` and `reconstruct_topology()` do with features smaller than the
+/// tolerance, a `Soup_topology::Small_features` (default `Small_features::COLLAPSE`).
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(small_features_t, small_features)
+
+namespace internal {
+/// the `small_features` parameter of `np`, or its default.
+template <class NamedParameters>
+Small_features small_features_policy(const NamedParameters& np)
+{
+  return CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::small_features),
+                                            Small_features::COLLAPSE);
+}
+} // namespace internal
+
 // Pipeline (`reconstruct_topology()`).
 
 /// whether `reconstruct_topology()` counts the pairs of triangles of its result that intersect

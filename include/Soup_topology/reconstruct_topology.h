@@ -63,6 +63,9 @@ struct Reconstruction_report
   std::size_t refused_holds_welds = 0;      ///< welds refused: the vertex received welds in an earlier round
   std::size_t ambiguous_sites = 0;          ///< sites where the minimum feature separation is not met
   std::size_t short_edges = 0;              ///< edges shorter than the tolerance (first round)
+  Small_features small_features = Small_features::REFUSE; ///< the policy for features smaller than the tolerance
+  std::size_t small_features_resolved = 0;  ///< `Small_features::COLLAPSE`: pairs of vertices of one triangle within the tolerance merged
+  std::size_t small_feature_collapsed_triangles = 0; ///< `Small_features::COLLAPSE`: triangles removed because two of their corners merged
   // T-junctions, summed over the rounds.
   std::size_t t_junctions = 0;              ///< vertices found on the interior of a border edge
   std::size_t split_triangles = 0;          ///< triangle splits (each adds one triangle)
@@ -252,10 +255,17 @@ public:
 
   /// welds (`snap_vertices()`) and splits T-junctions (`split_t_junctions()`) in rounds, until a
   /// round changes nothing or `max_rounds` have run; tells `user_visitor` every weld.
+  ///
+  /// The rounds end: every round but the last merges a vertex (the number of distinct vertices
+  /// the triangles use strictly decreases; a triangle is removed only when two of its corners
+  /// merge) or splits a triangle at a vertex already in the soup (no vertex is added, and a
+  /// split vertex is no longer on that border edge); `max_rounds` bounds them in any case.
   template <class User_visitor>
-  void weld_and_split_in_rounds(const FT& eps, std::size_t max_rounds, bool do_split, User_visitor& user_visitor)
+  void weld_and_split_in_rounds(const FT& eps, std::size_t max_rounds, bool do_split, Small_features policy,
+                                User_visitor& user_visitor)
   {
     report_.tolerance = CGAL::to_double(eps);
+    report_.small_features = policy;
     merged_into_.resize(pts_.size());
     for(std::size_t i = 0; i < merged_into_.size(); ++i) merged_into_[i] = static_cast<std::uint32_t>(i);
     Pipeline_visitor<User_visitor> recorder{&merged_into_, &input_index_, &user_visitor};
@@ -268,8 +278,8 @@ public:
       ++report_.rounds;
       const Snap_report s = snap_vertices(
         pts_, triangles_, *tables_,
-        parameters::fixed_vertices(static_cast<const std::vector<char>*>(&holds_welds),
-                                   weld_np.visitor(std::ref(recorder))));
+        parameters::small_features(policy, parameters::fixed_vertices(static_cast<const std::vector<char>*>(&holds_welds),
+                                                                      weld_np.visitor(std::ref(recorder)))));
       for(std::size_t v = 0; v < merged_into_.size(); ++v)
         if(merged_into_[v] != v) holds_welds[merged_into_[v]] = 1;
       add_weld_report(s, round);
@@ -332,6 +342,8 @@ private:
     report_.refused_degenerate += s.refused_degenerate;
     report_.refused_flip += s.refused_flip;
     report_.refused_holds_welds += s.refused_holds_welds;
+    report_.small_features_resolved += s.small_features_resolved;
+    report_.small_feature_collapsed_triangles += s.collapsed_triangles;
     if(round == 0) report_.short_edges = s.short_edges;
   }
   std::size_t add_split_report(const Split_report& t)
@@ -373,7 +385,7 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   with_user_visitor(np, [&](auto& visitor) {
     steps.weld_and_split_in_rounds(
       eps, choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8)),
-      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), visitor);
+      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), small_features_policy(np), visitor);
   });
   steps.measure_displacement();
   steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
@@ -511,6 +523,10 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd
 ///   \cgalParamNBegin{do_split_t_junctions} \cgalParamDescription{whether T-junctions are split (welding only
 ///     otherwise)} \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{small_features} \cgalParamDescription{what the weld does with two vertices of one
+///     triangle within the tolerance: merge them and remove the triangles that collapse (`COLLAPSE`),
+///     or refuse the merge and report the site as ambiguous (`REFUSE`); see `snap_vertices()`}
+///     \cgalParamType{`Soup_topology::Small_features`} \cgalParamDefault{`Small_features::COLLAPSE`} \cgalParamNEnd
 ///   \cgalParamNBegin{count_self_intersections} \cgalParamDescription{count the pairs of output
 ///     triangles that intersect beyond a shared vertex or edge (`geom_traits` then also needs
 ///     `Triangle_3`, `Do_intersect_3`, `Coplanar_3`)} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
@@ -594,7 +610,7 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
 ///     `boost::graph_traits<PolygonMesh>::vertex_descriptor` to a point of a CGAL kernel}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, mesh)`} \cgalParamNEnd
 ///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, visitor,
-///     maximum_number_of_rounds, do_split_t_junctions, count_self_intersections}
+///     maximum_number_of_rounds, do_split_t_junctions, small_features, count_self_intersections}
 ///     \cgalParamDescription{as for the soup; the visitor's indices are those of the vertices in
 ///     the order of `vertices(mesh)`} \cgalParamNEnd
 /// \cgalNamedParamsEnd

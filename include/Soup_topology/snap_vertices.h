@@ -67,6 +67,11 @@ struct Snap_report
   std::size_t border_edges_before = 0;        ///< border edges before the weld
   std::size_t border_edges_after = 0;         ///< border edges after the weld
   double max_displacement = 0;                ///< largest distance a merged vertex moved
+  /// `Small_features::COLLAPSE`: the pairs of vertices of one triangle within the tolerance of
+  /// each other that were merged (features smaller than the tolerance resolved).
+  std::size_t small_features_resolved = 0;
+  /// `Small_features::COLLAPSE`: the triangles removed because two of their corners were merged.
+  std::size_t collapsed_triangles = 0;
   /// total number of refusals.
   std::size_t refused() const { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds; }
 };
@@ -100,6 +105,20 @@ class Snap_visitor_holder;
 ///    met there), listed by its lexicographically smallest point;
 /// 3. a merge that would make a triangle degenerate or reverse its normal is refused (and the
 ///    other moves of that triangle with it), until every triangle is kept.
+///
+/// **Features smaller than the tolerance** (`small_features`). Under `Small_features::REFUSE`,
+/// two vertices of one triangle are never merged, as above. Under `Small_features::COLLAPSE`
+/// (the default), two vertices of one triangle within the tolerance of each other are merged like
+/// any other pair (Milenkovic's normalisation): a candidate within the tolerance of the
+/// representative joins its cluster even if they share a triangle, and a member that shares a
+/// triangle with a vertex already in the cluster joins it only if it is within the tolerance of
+/// every such vertex (no edge longer than the tolerance is collapsed). A triangle two of whose
+/// corners merge is removed (its neighbours are linked across it when the tables are rebuilt)
+/// and counted in `Snap_report::collapsed_triangles`; every point of it moves by at most the
+/// tolerance. The clusters are still made by the canonical rule of step 2 and the guard of
+/// step 3 still keeps every other triangle non-degenerate and unflipped, so the decisions stay
+/// exact and independent of the order of the input. A soup without two vertices of one triangle
+/// within the tolerance is welded identically under both policies.
 /// The representative keeps its coordinates: no point is constructed. The decisions depend on
 /// the points only, not on the order of the triangles, the rotation of their corners or the
 /// numbering of the vertices (for points that are pairwise distinct, which the exact weld ensures).
@@ -118,7 +137,8 @@ class Snap_visitor_holder;
 ///
 /// **Result.** Every reference to a merged vertex is replaced by its representative, in
 /// `triangles` and in `tables` (`Adjacency_tables::replace_vertex()`). Merged vertices stay in
-/// `points`, unreferenced (`reconstruct_topology()` removes them).
+/// `points`, unreferenced (`reconstruct_topology()` removes them). Collapsed triangles are removed
+/// from `triangles` and `tables` (the others keep their order).
 ///
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a random-access range of triangles, each a random-access range of 3 indices
@@ -143,10 +163,15 @@ class Snap_visitor_holder;
 ///     as `std::ref(v)`} \cgalParamType{a class with `on_merge(std::size_t, std::size_t)` and
 ///     `on_refusal(std::size_t, std::size_t, Refusal_reason)`} \cgalParamDefault{`Default_snap_visitor`}
 ///     \cgalParamNEnd
+///   \cgalParamNBegin{small_features} \cgalParamDescription{whether two vertices of one triangle within
+///     the tolerance are merged, the triangle removed (`COLLAPSE`), or refused (`REFUSE`); `COLLAPSE`
+///     needs a `TriangleRange` with `resize()`} \cgalParamType{`Soup_topology::Small_features`}
+///     \cgalParamDefault{`Small_features::COLLAPSE`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \returns a `Snap_report`.
-/// \throws Invalid_input for a negative, NaN or infinite tolerance, a non-finite coordinate, or
-///         tables that do not match the soup. Nothing is changed then.
+/// \throws Invalid_input for a negative, NaN or infinite tolerance, a non-finite coordinate,
+///         tables that do not match the soup, or `Small_features::COLLAPSE` with a triangle range
+///         without `resize()`. Nothing is changed then.
 template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
 Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
                           const NamedParameters& np = CGAL::parameters::default_values())
@@ -164,11 +189,15 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   const std::vector<char>* fixed = CGAL::parameters::choose_parameter(
     CGAL::parameters::get_parameter(np, internal_np::fixed_vertices), static_cast<const std::vector<char>*>(nullptr));
   if(fixed != nullptr && fixed->size() != points.size()) fixed = nullptr;
+  const Small_features policy = internal::small_features_policy(np);
+  if constexpr(!internal::has_resize<TriangleRange>::value)
+    if(policy == Small_features::COLLAPSE)
+      throw Invalid_input("snap_vertices: Small_features::COLLAPSE removes triangles: the triangle range needs resize()");
 
   // The points, read once: a readable map may return them by value.
   const auto point_copy = NP_helper::read_points(points, np);
   internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_copy, tables, eps, fixed, kernel,
-                                                                                  visitor.get());
+                                                                                  visitor.get(), policy);
   return worker.run(triangles);
 }
 

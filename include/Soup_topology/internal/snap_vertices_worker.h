@@ -139,6 +139,14 @@ private:
 /// `run()` names the steps; each step reads and fills the members below, in this order: short
 /// edges, candidates, tolerance graph (components and rows of neighbours), refusals of
 /// same-triangle pairs, clusters, ambiguous sites, geometric guard, application.
+///
+/// With `Small_features::COLLAPSE`, two vertices of one triangle within the tolerance of each
+/// other are not refused: the rows of neighbours keep them, a member may share a triangle with
+/// the cluster when it is within the tolerance of every vertex of the cluster it shares one
+/// with, and the triangles whose corners merge are removed (`collapsed_` lists them). Every
+/// vertex still moves to a representative within the tolerance of it, so every point of a
+/// removed triangle moves by at most the tolerance. Without such a pair in the soup the
+/// decisions are those of `Small_features::REFUSE`.
 template <class Kernel, class Visitor>
 class Snap_vertices_worker
 {
@@ -157,9 +165,12 @@ public:
   /// \param fixed nonzero for the vertices that may receive welds but not move, or `nullptr`
   /// \param kernel the traits object that takes every geometric decision
   /// \param visitor told of every merge and refusal
+  /// \param policy what becomes of two vertices of one triangle within the tolerance
   Snap_vertices_worker(const std::vector<Point>& points, Adjacency_tables& tables, const FT& eps,
-                       const std::vector<char>* fixed, const Kernel& kernel, Visitor& visitor)
-    : points_(points), tables_(tables), eps_(eps), fixed_(fixed), kernel_(kernel), visitor_(visitor)
+                       const std::vector<char>* fixed, const Kernel& kernel, Visitor& visitor,
+                       Small_features policy = Small_features::REFUSE)
+    : points_(points), tables_(tables), eps_(eps), fixed_(fixed), kernel_(kernel), visitor_(visitor),
+      collapse_(policy == Small_features::COLLAPSE)
   {
     report_.tolerance = CGAL::to_double(eps);
     report_.border_edges_before = tables.number_of_border_edges();
@@ -287,20 +298,21 @@ private:
         for(size_type v : tables_.triangle(t)) mate[v] = value;
     };
     tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
-      mark_mates(c, 1);
+      if(!collapse_) mark_mates(c, 1);
       row_start_[c] = row_.size();
       for(std::size_t d : found) {
         if(d == c) continue;
         components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
-        if(!mate[candidates_[d]]) row_.push_back(static_cast<std::uint32_t>(d));
+        if(collapse_ || !mate[candidates_[d]]) row_.push_back(static_cast<std::uint32_t>(d));
       }
       row_end_[c] = row_.size();
-      mark_mates(c, 0);
+      if(!collapse_) mark_mates(c, 0);
     });
   }
 
   void refuse_same_triangle_pairs()
   {
+    if(collapse_) return; // merged, or refused when the cluster is formed
     for(const Pair& pr : same_triangle_pairs_) {
       ++report_.refused_same_triangle;
       visitor_.on_refusal(candidates_[pr.second], candidates_[pr.first], Refusal_reason::SAME_TRIANGLE);
@@ -348,7 +360,8 @@ private:
       found_.clear();
       tree_->vertices_near_point(candidate_points_[rep], eps_, std::back_inserter(found_));
       for(std::size_t d : found_)
-        if(d != rep && !assigned_[d] && mate_of_[candidates_[d]] != rep) members_.push_back(static_cast<std::uint32_t>(d));
+        if(d != rep && !assigned_[d] && (collapse_ || mate_of_[candidates_[d]] != rep))
+          members_.push_back(static_cast<std::uint32_t>(d));
     } else {
       for(std::size_t k = row_start_[rep]; k < row_end_[rep]; ++k)
         if(!assigned_[row_[k]]) members_.push_back(row_[k]);
@@ -383,7 +396,7 @@ private:
       }
       bool conflict = false;
       for(size_type t : tables_.triangles_around_vertex(mv))
-        if(in_cluster_mark_[t] == cluster_id_) { conflict = true; break; }
+        if(in_cluster_mark_[t] == cluster_id_ && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
       if(conflict) {
         ++report_.refused_same_triangle;
         visitor_.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
@@ -397,6 +410,20 @@ private:
     return cluster_size;
   }
 
+  // Under `Small_features::COLLAPSE`: `true` if member `mv` may join the cluster of `rep_v` although
+  // it shares triangle `t` with it: `mv` is within the tolerance of every vertex of `t` in the
+  // cluster (the collapsed edges are all shorter than the tolerance).
+  bool collapsible(size_type t, size_type mv, size_type rep_v) const
+  {
+    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
+    const FT eps2 = eps_ * eps_;
+    for(size_type w : tables_.triangle(t)) {
+      if(w == mv || (w != rep_v && target_[w] != rep_v)) continue;
+      if(compare_sq(point(mv), point(w), eps2) == CGAL::LARGER) return false;
+    }
+    return true;
+  }
+
   // Ambiguous sites: the components that hold two vertices of one triangle, or that did not all
   // go to one representative. Each is listed by its lexicographically smallest point, so that
   // the sites do not depend on the numbering of the vertices.
@@ -404,7 +431,8 @@ private:
   {
     const std::size_t n = candidates_.size();
     std::vector<char> ambiguous(n, 0);
-    for(const Pair& pr : same_triangle_pairs_) ambiguous[components_.find(pr.first)] = 1;
+    if(!collapse_)
+      for(const Pair& pr : same_triangle_pairs_) ambiguous[components_.find(pr.first)] = 1;
     for(std::uint32_t c = 0; c < n; ++c)
       if(components_.find(c) == c && component_size_[c] >= 2 && largest_cluster_[c] != component_size_[c])
         ambiguous[c] = 1;
@@ -441,6 +469,9 @@ private:
       const Adjacency_tables::Triangle& tr = tables_.triangle(t);
       const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
       if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) continue;
+      // Two corners merged (only under COLLAPSE: clusters hold no two vertices of one triangle
+      // otherwise): the triangle is removed, nothing of it to keep.
+      if(n0 == n1 || n1 == n2 || n2 == n0) continue;
       Refusal_reason why = Refusal_reason::FLIP;
       if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) continue;
       if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
@@ -467,16 +498,26 @@ private:
   // (`replace_vertex`, the patent's rules (a)-(c)). Many merges (an exploded soup): the
   // triangles are rewritten once and the tables rebuilt, which is linear, where thousands of
   // local updates around the same representatives are not. Both give the same tables.
+  //
+  // Triangles whose corners merge (`Small_features::COLLAPSE`) are removed, the others keep their
+  // order, and the tables are rebuilt: the neighbours of a removed triangle are linked across it.
   void apply()
   {
     std::size_t number_of_merges = 0;
     for(size_type v : candidates_)
       if(target_[v] != none) ++number_of_merges;
-    const bool rebuild = number_of_merges > tables_.number_of_triangles() / 16 + 64;
+    if(collapse_) count_collapses();
+    const bool rebuild = number_of_merges > tables_.number_of_triangles() / 16 + 64 || !collapsed_.empty();
     if(rebuild) {
-      std::vector<Adjacency_tables::Triangle> rewritten(tables_.triangles());
-      for(Adjacency_tables::Triangle& tr : rewritten)
+      std::vector<Adjacency_tables::Triangle> rewritten;
+      rewritten.reserve(tables_.number_of_triangles() - collapsed_.size());
+      std::size_t next_collapsed = 0;
+      for(size_type t = 0; t < tables_.number_of_triangles(); ++t) {
+        if(next_collapsed < collapsed_.size() && collapsed_[next_collapsed] == t) { ++next_collapsed; continue; }
+        Adjacency_tables::Triangle tr = tables_.triangle(t);
         for(size_type& v : tr) v = final_vertex(v);
+        rewritten.push_back(tr);
+      }
       tables_ = Adjacency_tables(rewritten, points_.size());
     }
     const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
@@ -494,9 +535,34 @@ private:
     report_.border_edges_after = tables_.number_of_border_edges();
   }
 
+  // The triangles removed (in increasing order) and the pairs of vertices of one triangle
+  // within the tolerance that were merged.
+  void count_collapses()
+  {
+    for(size_type t : touched_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      if(n0 == n1 || n1 == n2 || n2 == n0) collapsed_.push_back(t);
+    }
+    report_.collapsed_triangles = collapsed_.size();
+    for(const Pair& pr : same_triangle_pairs_)
+      if(final_vertex(candidates_[pr.first]) == final_vertex(candidates_[pr.second])) ++report_.small_features_resolved;
+  }
+
   template <class TriangleRange>
   void write_back(TriangleRange& triangles) const
   {
+    if(!collapsed_.empty()) {
+      // Triangles were removed: every triangle is written, and the range shortened.
+      if constexpr(has_resize<TriangleRange>::value) {
+        triangles.resize(tables_.number_of_triangles());
+        for(size_type t = 0; t < tables_.number_of_triangles(); ++t) {
+          const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+          assign_triangle(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)), tr[0], tr[1], tr[2]);
+        }
+      }
+      return;
+    }
     for(size_type t : touched_) {
       const Adjacency_tables::Triangle& tr = tables_.triangle(t);
       assign_triangle(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)), tr[0], tr[1], tr[2]);
@@ -510,6 +576,7 @@ private:
   const std::vector<char>* fixed_;
   const Kernel kernel_;
   Visitor& visitor_;
+  const bool collapse_;                                 // Small_features::COLLAPSE
   Snap_report report_;
   // Candidates and the tolerance graph over them (local ids).
   std::vector<size_type> candidates_;
@@ -533,6 +600,8 @@ private:
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
+  // Application.
+  std::vector<size_type> collapsed_;                    // triangles removed, in increasing order
 };
 
 } // namespace internal
