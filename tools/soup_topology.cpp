@@ -396,6 +396,7 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   rep.add_string("small_features", r.small_features == ST::Small_features::COLLAPSE ? "collapse" : "refuse");
   rep.add("small_features_resolved", r.small_features_resolved);
   rep.add("small_feature_collapsed_triangles", r.small_feature_collapsed_triangles);
+  rep.add("flipped_degenerate_triangles", r.flipped_degenerate_triangles);
   rep.add("t_junctions", r.t_junctions);
   rep.add("split_triangles", r.split_triangles);
   rep.add("rounds", r.rounds);

@@ -16,6 +16,7 @@
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
+#include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/soup_self_intersections.h>
 #include <Soup_topology/internal/tolerance.h>
@@ -66,6 +67,8 @@ struct Reconstruction_report
   Small_features small_features = Small_features::REFUSE; ///< the policy for features smaller than the tolerance
   std::size_t small_features_resolved = 0;  ///< `Small_features::COLLAPSE`: pairs of vertices of one triangle within the tolerance merged
   std::size_t small_feature_collapsed_triangles = 0; ///< `Small_features::COLLAPSE`: triangles removed because two of their corners merged
+  std::size_t flipped_degenerate_triangles = 0; ///< `Small_features::COLLAPSE`: degenerate input triangles (collinear corners) removed by an edge flip
+  std::size_t degenerate_triangles_after = 0;   ///< triangles of the result with collinear corners
   // T-junctions, summed over the rounds.
   std::size_t t_junctions = 0;              ///< vertices found on the interior of a border edge
   std::size_t split_triangles = 0;          ///< triangle splits (each adds one triangle)
@@ -244,6 +247,14 @@ public:
     report_.collapsed_triangles = remove_collapsed_triangles(triangles_);
   }
 
+  /// removes the degenerate triangles (three distinct collinear corners) by edge flips, where
+  /// the triangle across the longest edge allows it (`flip_degenerate_triangles()`): the surface
+  /// does not move. Under `Small_features::COLLAPSE`, before the tables are built.
+  void flip_degenerate_triangles_away()
+  {
+    report_.flipped_degenerate_triangles = flip_degenerate_triangles(pts_, triangles_, gt_).flipped;
+  }
+
   /// builds the adjacency tables and records what they show before the repair.
   void build_tables()
   {
@@ -315,6 +326,9 @@ public:
     report_.non_manifold_edges_after = tables_->non_manifold_edges().size();
     report_.non_manifold_vertices_after = tables_->non_manifold_vertices().size();
     report_.components = tables_->number_of_connected_components();
+    const typename Geom_traits::Collinear_3 collinear = gt_.collinear_3_object();
+    for(const Adjacency_tables::Triangle& t : tables_->triangles())
+      if(collinear(pts_[t[0]], pts_[t[1]], pts_[t[2]])) ++report_.degenerate_triangles_after;
     tables_.reset();
     const std::size_t before = pts_.size();
     const std::vector<std::uint32_t> kept_index = remove_unreferenced_points(pts_, triangles_);
@@ -381,11 +395,13 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   put_points(steps);
   const FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
   if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
+  const Small_features policy = small_features_policy(np);
+  if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
   steps.build_tables();
   with_user_visitor(np, [&](auto& visitor) {
     steps.weld_and_split_in_rounds(
       eps, choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8)),
-      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), small_features_policy(np), visitor);
+      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), policy, visitor);
   });
   steps.measure_displacement();
   steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
