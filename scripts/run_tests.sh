@@ -4,21 +4,42 @@
 # package is found by a consumer project through find_package(Soup_topology); then the tests under
 # AddressSanitizer + UndefinedBehaviorSanitizer and short fuzz runs (SOUP_TOPOLOGY_HARDENING=0 skips
 # those two).
+#   BUILD_DIR     the Release build folder (default build)
+#   JOBS          parallel compilations and tests (default: nproc)
+#   FUZZ_SECONDS  seconds each fuzz target runs here (default 15: a check that every target still
+#                 runs clean from its seeds; README.md "Hardening" has the long runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+hardening=${SOUP_TOPOLOGY_HARDENING:-1}
+# Every Debian package of the steps below in one apt-get run: the build, clang and libFuzzer for
+# the fuzz step, Chromium and Node.js for the browser tests.
+extras=(browser)
+[ "$hardening" != 0 ] && extras+=(fuzz)
+bash scripts/setup.sh "${extras[@]}"
 build=${BUILD_DIR:-build}
 jobs=${JOBS:-$(nproc)}
+export JOBS=$jobs
 # Each step prints the seconds it took, so that a CI log shows where the time goes.
 step_start=$SECONDS
 step_done() { echo "== $1: $((SECONDS - step_start)) s"; step_start=$SECONDS; }
 # Every option that decides what is built is given explicitly, so that a build folder configured
 # by another script (run_demo.sh builds only the tool) cannot leave the tests out.
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_BUILD_TESTS=ON \
-      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=ON
+      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF
+# The benchmarks are run on demand from a Release build (doc/Soup_topology/Performance.md); here
+# they are only compiled and linked, without optimisation (much cheaper to compile), in a folder
+# of their own whose programs are not for measuring.
+benchmark_build="$build-benchmarks-unoptimised"
+cmake -S . -B "$benchmark_build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0" \
+      -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE -DSOUP_TOPOLOGY_BUILD_TESTS=OFF \
+      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=ON > /dev/null
 step_done "packages and configuration"
 cmake --build "$build" -j "$jobs"
-step_done "Release build (tests, examples, tool, benchmarks)"
+step_done "Release build (tests, examples, tool)"
+cmake --build "$benchmark_build" -j "$jobs"
+step_done "benchmarks compiled (unoptimised)"
+# The tests run one process each, JOBS at a time; a test that runs the tool waits for it, so
+# there are never more than JOBS busy processes.
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
 step_done "Release tests"
 # The installed package works for a user project.
@@ -28,10 +49,15 @@ cmake -S test/install_consumer -B "$build/consumer" -DCMAKE_BUILD_TYPE=Release -
 cmake --build "$build/consumer" -j "$jobs" > /dev/null
 "$build/consumer/consumer"
 step_done "install and consumer project"
+
+# Further checks, each a script of its own that fails on any error, followed by its step_done
+# line: the ThreadSanitizer build of the parallel code, the build without TBB, the browser test
+# of the HTML report (its packages are installed above).
+
 # Hardening: the tests under the sanitizers, then the fuzz targets for FUZZ_SECONDS each.
-if [ "${SOUP_TOPOLOGY_HARDENING:-1}" != 0 ]; then
+if [ "$hardening" != 0 ]; then
   bash scripts/run_sanitizers.sh
   step_done "sanitizer build and tests"
-  bash scripts/run_fuzz.sh
+  FUZZ_SECONDS=${FUZZ_SECONDS:-15} bash scripts/run_fuzz.sh
   step_done "fuzz build and runs"
 fi
