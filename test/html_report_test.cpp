@@ -19,7 +19,9 @@
 #include <string>
 #include <vector>
 
-namespace {
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace html_report_test {
 
 namespace ST = Soup_topology;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -259,4 +261,4 @@ TEST(HtmlReportCli, PagesEmbedTheJsonOutput)
   EXPECT_TRUE(refused.empty());
 }
 
-} // namespace
+} // namespace html_report_test

@@ -31,7 +31,9 @@
 #include <string>
 #include <vector>
 
-namespace {
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace small_features_test {
 
 namespace ST = Soup_topology;
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -463,4 +465,4 @@ TEST(SmallFeaturesDegenerate, ReconstructTopologyFlipsThemUnderCollapse)
   }
 }
 
-} // namespace
+} // namespace small_features_test
