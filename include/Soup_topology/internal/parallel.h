@@ -3,8 +3,8 @@
 //
 // Deterministic parallel helpers behind CGAL's `ConcurrencyTag`. Work is cut into blocks of a
 // fixed size that does not depend on the number of threads, results of blocks are put together
-// in block order, and sorts only sort keys made unique (by an index), so that every helper gives
-// the same result as its sequential run, on any number of threads.
+// in block order, so that every helper gives the same result as its sequential run, on any
+// number of threads.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_PARALLEL_H
 #define SOUP_TOPOLOGY_INTERNAL_PARALLEL_H
@@ -14,7 +14,10 @@
 #if defined(CGAL_LINKED_WITH_TBB)
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
+#include <tbb/partitioner.h>
+#if defined(__SANITIZE_THREAD__)
+#include <sanitizer/tsan_interface.h>
+#endif
 #endif
 
 #include <algorithm>
@@ -62,9 +65,27 @@ void for_each_block(std::size_t n, std::size_t block_size, const F& f)
 #if defined(CGAL_LINKED_WITH_TBB)
   if constexpr(runs_in_parallel<ConcurrencyTag>()) {
     if(blocks > 1) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        for(std::size_t b = r.begin(); b != r.end(); ++b) run(b);
-      });
+#if defined(__SANITIZE_THREAD__)
+      // TBB hands its tasks over inside its (uninstrumented) library: ThreadSanitizer is told
+      // that the blocks start after the call and end before its return, as TBB guarantees.
+      char started = 0, finished = 0;
+      __tsan_release(&started);
+#endif
+      tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, blocks, 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+#if defined(__SANITIZE_THREAD__)
+          __tsan_acquire(&started);
+#endif
+          for(std::size_t b = r.begin(); b != r.end(); ++b) run(b);
+#if defined(__SANITIZE_THREAD__)
+          __tsan_release(&finished);
+#endif
+        },
+        tbb::simple_partitioner());
+#if defined(__SANITIZE_THREAD__)
+      __tsan_acquire(&finished);
+#endif
       return;
     }
   }
@@ -118,21 +139,6 @@ std::size_t compact_in_order(std::size_t n, const Keep& keep, const Out& out, st
       if(keep(i)) out(i, position++);
   });
   return total;
-}
-
-/// sorts `[first, last)` by `less`, in parallel when `ConcurrencyTag` asks for it. `less` must be
-/// a strict total order on the elements (keys made unique by an index), so that the result is the
-/// only sorted order, whatever the algorithm and the number of threads.
-template <class ConcurrencyTag, class RandomIt, class Less>
-void sort_unique_keys(RandomIt first, RandomIt last, const Less& less)
-{
-#if defined(CGAL_LINKED_WITH_TBB)
-  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
-    tbb::parallel_sort(first, last, less);
-    return;
-  }
-#endif
-  std::sort(first, last, less);
 }
 
 /// appends the per-block buffers `buffers[0], buffers[1], ...` to `out`, in block order.
