@@ -2,9 +2,9 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // soup_topology: the command-line face of the library.
-//   soup_topology stats FILE [--json]
+//   soup_topology stats FILE [--json] [--threads N]
 //   soup_topology repair IN -o OUT [--tolerance T | --relative-tolerance R] [--report FILE.json]
-//                        [--json] [--check] [--no-t-junctions] [--self-intersections]
+//                        [--json] [--check] [--no-t-junctions] [--self-intersections] [--threads N]
 // Exit codes: 0 success, 1 `--check` found the written result not closed, not manifold or (with
 //             --self-intersections) self-intersecting, 2 bad input, arguments or a file that
 //             cannot be written (message on stderr).
@@ -23,6 +23,11 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/tags.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/global_control.h>
+#endif
 
 #include <boost/iterator/function_output_iterator.hpp>
 
@@ -54,6 +59,8 @@ using Point = Kernel::Point_3;
 using Triangle = std::array<std::size_t, 3>;
 namespace ST = Soup_topology;
 namespace tool = soup_topology_tool;
+// The steps run on TBB's threads when the tool is built with TBB; the output is the same.
+using Concurrency = CGAL::Parallel_if_available_tag;
 
 struct Usage_error : std::runtime_error
 {
@@ -62,14 +69,14 @@ struct Usage_error : std::runtime_error
 
 const char* usage_text =
   "usage:\n"
-  "  soup_topology stats FILE [--json]\n"
+  "  soup_topology stats FILE [--json] [--threads N]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology gaps FILE [--json]\n"
   "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
   "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
-  "                       [--orientation bound-volume|keep-input|outward]\n"
+  "                       [--orientation bound-volume|keep-input|outward] [--threads N]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
@@ -88,6 +95,8 @@ const char* usage_text =
   "      over their targets (keeping an existing file's permissions); on an error or a signal\n"
   "      nothing is replaced and no temporary file is left. OUT and the report must differ\n"
   "      from IN and from each other.\n"
+  "  --threads N (stats, repair): use at most N threads (default: all cores; the result is the\n"
+  "      same for every N).\n"
 "exit codes: 0 success, 1 --check failed, 2 bad input or arguments, or an output that cannot be written\n";
 
 // An ordered list of "key": value pairs, printed as one JSON object or as aligned text.
@@ -168,22 +177,56 @@ void add_read_counts(Report& r, const ST::IO::Soup_read_report& read)
   r.add("ear_clipping_failures", read.ear_clipping_failures);
 }
 
+// At most `threads` threads for the steps that run in parallel (0: TBB's default, all cores).
+class Thread_limit
+{
+public:
+  explicit Thread_limit(std::size_t threads)
+  {
+#if defined(CGAL_LINKED_WITH_TBB)
+    if(threads > 0) limit_.emplace(tbb::global_control::max_allowed_parallelism, threads);
+#else
+    (void)threads;
+#endif
+  }
+private:
+#if defined(CGAL_LINKED_WITH_TBB)
+  std::optional<tbb::global_control> limit_;
+#endif
+};
+
+std::size_t parse_threads(const std::string& command, const std::string& text)
+{
+  std::size_t n = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if(error != std::errc() || end != text.data() + text.size() || n == 0 || n > 4096)
+    throw Usage_error(command + ": --threads takes a number of threads from 1 to 4096, not '" + text + "'");
+  return n;
+}
+
 int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
-  for(const std::string& a : args) {
+  std::size_t threads = 0;
+  for(std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
     if(a == "--json") json = true;
+    else if(a == "--threads") {
+      if(i + 1 >= args.size()) throw Usage_error("stats: --threads needs a value");
+      threads = parse_threads("stats", args[++i]);
+    }
     else if(!a.empty() && a[0] == '-') throw Usage_error("stats: unknown option '" + a + "'");
     else if(file.empty()) file = a;
     else throw Usage_error("stats: more than one input file ('" + file + "' and '" + a + "')");
   }
   if(file.empty()) throw Usage_error("stats: no input file");
+  const Thread_limit limit(threads);
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(file, points, triangles);
-  const ST::Adjacency_tables tables(triangles, points.size());
+  const ST::Adjacency_tables tables(triangles, points.size(), Concurrency());
   const ST::Soup_statistics s = ST::compute_statistics(points, tables);
 
   Report r;
@@ -275,6 +318,7 @@ struct Repair_options
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
+  std::size_t threads = 0;       // --threads N; 0: all cores
   std::string tolerance_choice;  // its verdict and reasoning, for the report
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
 };
@@ -301,6 +345,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--no-t-junctions") o.split = false;
     else if(a == "--self-intersections") o.self_intersections = true;
     else if(a == "--orientation") o.orientation_policy = parse_orientation_policy(value());
+    else if(a == "--threads") o.threads = parse_threads("repair", value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -320,12 +365,12 @@ ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point
 {
   const auto split = ST::parameters::do_split_t_junctions(o.split);
   if(o.tolerance)
-    return ST::internal::reconstruct_exactly_welded_soup(
+    return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
   if(o.relative)
-    return ST::internal::reconstruct_exactly_welded_soup(
+    return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::do_split_t_junctions(o.split, ST::parameters::relative_tolerance(*o.relative)));
-  return ST::internal::reconstruct_exactly_welded_soup(points, triangles, split);
+  return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(points, triangles, split);
 }
 
 // The report of a repair. `r` describes the repaired soup (its final counts are those of the
@@ -405,6 +450,7 @@ int run_repair(const std::vector<std::string>& args)
   Repair_options o = parse_repair_arguments(args);
   check_repair_paths(o.in, o.out, o.report_file);
   tool::install_signal_handlers();
+  const Thread_limit limit(o.threads);
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
@@ -422,8 +468,9 @@ int run_repair(const std::vector<std::string>& args)
   // What is written: repeated triangles left out, components oriented, non-manifold vertices
   // and edges separated by duplicated points. The report's statistics describe this soup.
   const ST::Orientation_report orientation =
-    ST::orient_triangle_soup(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
-  const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
+    ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
+  const ST::Soup_statistics s =
+    ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
   progress("oriented the soup");
   std::optional<std::size_t> intersecting;
   if(o.self_intersections) {
