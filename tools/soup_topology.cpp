@@ -27,6 +27,10 @@
 
 #if defined(CGAL_LINKED_WITH_TBB)
 #include <tbb/global_control.h>
+#include <tbb/task_scheduler_observer.h>
+
+#include <pthread.h>
+#include <signal.h>
 #endif
 
 #include <boost/iterator/function_output_iterator.hpp>
@@ -177,6 +181,27 @@ void add_read_counts(Report& r, const ST::IO::Soup_read_report& read)
   r.add("ear_clipping_failures", read.ear_clipping_failures);
 }
 
+#if defined(CGAL_LINKED_WITH_TBB)
+// TBB's worker threads block SIGINT, SIGTERM and SIGHUP when they join: those signals reach the
+// main thread, where the output files block them while a temporary file is being registered.
+class Worker_signal_mask : public tbb::task_scheduler_observer
+{
+public:
+  Worker_signal_mask() { observe(true); }
+  ~Worker_signal_mask() override { observe(false); }
+  void on_scheduler_entry(bool is_worker) override
+  {
+    if(!is_worker) return;
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  }
+};
+#endif
+
 // At most `threads` threads for the steps that run in parallel (0: TBB's default, all cores).
 class Thread_limit
 {
@@ -192,6 +217,7 @@ public:
 private:
 #if defined(CGAL_LINKED_WITH_TBB)
   std::optional<tbb::global_control> limit_;
+  Worker_signal_mask mask_;
 #endif
 };
 
