@@ -2,11 +2,12 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // soup_topology: the command-line face of the library.
-//   soup_topology stats FILE [--json] [--html REPORT.html]
+//   soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]
 //   soup_topology gaps FILE [--json]
 //   soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]
 //                        [--json] [--check] [--no-t-junctions] [--self-intersections]
 //                        [--orientation P] [--small-features collapse|refuse] [--html REPORT.html]
+//                        [--threads N]
 // (the usage text below describes every option)
 // Exit codes: 0 success, 1 `--check` found the written result not closed, not manifold or (with
 //             --self-intersections) self-intersecting, 2 bad input, arguments or a file that
@@ -27,6 +28,15 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/tags.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/global_control.h>
+#include <tbb/task_scheduler_observer.h>
+
+#include <pthread.h>
+#include <signal.h>
+#endif
 
 #include <boost/iterator/function_output_iterator.hpp>
 
@@ -58,6 +68,8 @@ using Point = Kernel::Point_3;
 using Triangle = std::array<std::size_t, 3>;
 namespace ST = Soup_topology;
 namespace tool = soup_topology_tool;
+// The steps run on TBB's threads when the tool is built with TBB; the output is the same.
+using Concurrency = CGAL::Parallel_if_available_tag;
 
 struct Usage_error : std::runtime_error
 {
@@ -66,7 +78,7 @@ struct Usage_error : std::runtime_error
 
 const char* usage_text =
   "usage:\n"
-  "  soup_topology stats FILE [--json] [--html REPORT.html]\n"
+  "  soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology gaps FILE [--json]\n"
@@ -74,7 +86,7 @@ const char* usage_text =
   "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
-  "                       [--small-features collapse|refuse] [--html REPORT.html]\n"
+  "                       [--small-features collapse|refuse] [--html REPORT.html] [--threads N]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
   "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
@@ -98,6 +110,8 @@ const char* usage_text =
   "      over their targets (keeping an existing file's permissions); on an error or a signal\n"
   "      nothing is replaced and no temporary file is left. OUT and the report must differ\n"
   "      from IN and from each other.\n"
+  "  --threads N (stats, repair): use at most N threads (default: all cores; the result is the\n"
+  "      same for every N).\n"
 "exit codes: 0 success, 1 --check failed, 2 bad input or arguments, or an output that cannot be written\n";
 
 // An ordered list of "key": value pairs, printed as one JSON object or as aligned text.
@@ -178,11 +192,61 @@ void add_read_counts(Report& r, const ST::IO::Soup_read_report& read)
   r.add("ear_clipping_failures", read.ear_clipping_failures);
 }
 
+#if defined(CGAL_LINKED_WITH_TBB)
+// TBB's worker threads block SIGINT, SIGTERM and SIGHUP when they join: those signals reach the
+// main thread, where the output files block them while a temporary file is being registered.
+class Worker_signal_mask : public tbb::task_scheduler_observer
+{
+public:
+  Worker_signal_mask() { observe(true); }
+  ~Worker_signal_mask() override { observe(false); }
+  void on_scheduler_entry(bool is_worker) override
+  {
+    if(!is_worker) return;
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  }
+};
+#endif
+
+// At most `threads` threads for the steps that run in parallel (0: TBB's default, all cores).
+class Thread_limit
+{
+public:
+  explicit Thread_limit(std::size_t threads)
+  {
+#if defined(CGAL_LINKED_WITH_TBB)
+    if(threads > 0) limit_.emplace(tbb::global_control::max_allowed_parallelism, threads);
+#else
+    (void)threads;
+#endif
+  }
+private:
+#if defined(CGAL_LINKED_WITH_TBB)
+  std::optional<tbb::global_control> limit_;
+  Worker_signal_mask mask_;
+#endif
+};
+
+std::size_t parse_threads(const std::string& command, const std::string& text)
+{
+  std::size_t n = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if(error != std::errc() || end != text.data() + text.size() || n == 0 || n > 4096)
+    throw Usage_error(command + ": --threads takes a number of threads from 1 to 4096, not '" + text + "'");
+  return n;
+}
+
 int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
   std::string html;
+  std::size_t threads = 0;
   for(std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if(a == "--json") json = true;
@@ -190,17 +254,22 @@ int run_stats(const std::vector<std::string>& args)
       if(i + 1 >= args.size()) throw Usage_error("stats: --html needs a value");
       html = args[++i];
     }
+    else if(a == "--threads") {
+      if(i + 1 >= args.size()) throw Usage_error("stats: --threads needs a value");
+      threads = parse_threads("stats", args[++i]);
+    }
     else if(!a.empty() && a[0] == '-') throw Usage_error("stats: unknown option '" + a + "'");
     else if(file.empty()) file = a;
     else throw Usage_error("stats: more than one input file ('" + file + "' and '" + a + "')");
   }
   if(file.empty()) throw Usage_error("stats: no input file");
   if(!html.empty()) tool::check_html_path(html, {file});
+  const Thread_limit limit(threads);
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(file, points, triangles);
-  const ST::Adjacency_tables tables(triangles, points.size());
+  const ST::Adjacency_tables tables(triangles, points.size(), Concurrency());
   const ST::Soup_statistics s = ST::compute_statistics(points, tables);
 
   Report r;
@@ -300,6 +369,7 @@ struct Repair_options
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
+  std::size_t threads = 0;       // --threads N; 0: all cores
   std::string tolerance_choice;  // its verdict and reasoning, for the report
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
@@ -329,6 +399,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--self-intersections") o.self_intersections = true;
     else if(a == "--orientation") o.orientation_policy = parse_orientation_policy(value());
     else if(a == "--small-features") o.small_features = parse_small_features(value());
+    else if(a == "--threads") o.threads = parse_threads("repair", value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -348,14 +419,14 @@ ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point
 {
   const auto split = ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(o.split));
   if(o.tolerance)
-    return ST::internal::reconstruct_exactly_welded_soup(
+    return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
                                                           o.split, CGAL::parameters::snapping_tolerance(*o.tolerance))));
   if(o.relative)
-    return ST::internal::reconstruct_exactly_welded_soup(
+    return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
                                                           o.split, ST::parameters::relative_tolerance(*o.relative))));
-  return ST::internal::reconstruct_exactly_welded_soup(points, triangles, split);
+  return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(points, triangles, split);
 }
 
 // The report of a repair. `r` describes the repaired soup (its final counts are those of the
@@ -440,6 +511,7 @@ int run_repair(const std::vector<std::string>& args)
   check_repair_paths(o.in, o.out, o.report_file);
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
+  const Thread_limit limit(o.threads);
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
@@ -459,8 +531,9 @@ int run_repair(const std::vector<std::string>& args)
   // What is written: repeated triangles left out, components oriented, non-manifold vertices
   // and edges separated by duplicated points. The report's statistics describe this soup.
   const ST::Orientation_report orientation =
-    ST::orient_triangle_soup(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
-  const ST::Soup_statistics s = ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size()));
+    ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
+  const ST::Soup_statistics s =
+    ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
   progress("oriented the soup");
   std::optional<std::size_t> intersecting;
   if(o.self_intersections) {

@@ -7,15 +7,21 @@
 #define SOUP_TOPOLOGY_ADJACENCY_TABLES_H
 
 #include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <memory>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -103,17 +109,51 @@ public:
   ///         range; the message names the face.
   template <class FaceRange>
   Adjacency_tables(const FaceRange& faces, std::size_t number_of_points)
+    : Adjacency_tables(faces, number_of_points, CGAL::Sequential_tag())
+  {}
+
+  /// builds the tables of `faces` over `number_of_points` points, on TBB's threads when
+  /// `ConcurrencyTag` asks for it (`doc/Soup_topology/Parallel.md`). The tables are the same,
+  /// entry for entry, as those of the sequential constructor, on any number of threads.
+  /// \tparam FaceRange a range of faces, each a random-access range of 3 vertex indices.
+  /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
+  ///         `CGAL::Parallel_if_available_tag`
+  /// \param faces the triangles of the soup
+  /// \param number_of_points the number of points of the soup; the indices of `faces` are below it
+  /// \param tag selects the sequential or the parallel construction (its value is not used)
+  /// \throws Invalid_input if a face is not a triangle, repeats an index or has an index out of
+  ///         range; the message names the face.
+  template <class FaceRange, class ConcurrencyTag>
+  Adjacency_tables(const FaceRange& faces, std::size_t number_of_points, ConcurrencyTag tag)
   {
+    (void)tag;
     internal::check_triangle_soup(faces, number_of_points);
-    triangles_.reserve(static_cast<std::size_t>(std::distance(std::begin(faces), std::end(faces))));
-    std::size_t face_id = 0;
-    for(const auto& f : faces) {
-      triangles_.push_back({static_cast<size_type>(internal::corner(f, 0, face_id)),
-                            static_cast<size_type>(internal::corner(f, 1, face_id)),
-                            static_cast<size_type>(internal::corner(f, 2, face_id))});
-      ++face_id;
+    const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(faces), std::end(faces)));
+    using Face_iterator = decltype(std::begin(faces));
+    constexpr bool random_access = std::is_base_of<std::random_access_iterator_tag,
+      typename std::iterator_traits<Face_iterator>::iterator_category>::value;
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && random_access) {
+      triangles_.resize(m);
+      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
+        const auto& f = *(std::begin(faces) + static_cast<std::ptrdiff_t>(t));
+        triangles_[t] = {static_cast<size_type>(internal::corner(f, 0, t)),
+                         static_cast<size_type>(internal::corner(f, 1, t)),
+                         static_cast<size_type>(internal::corner(f, 2, t))};
+      });
+    } else {
+      triangles_.reserve(m);
+      std::size_t face_id = 0;
+      for(const auto& f : faces) {
+        triangles_.push_back({static_cast<size_type>(internal::corner(f, 0, face_id)),
+                              static_cast<size_type>(internal::corner(f, 1, face_id)),
+                              static_cast<size_type>(internal::corner(f, 2, face_id))});
+        ++face_id;
+      }
     }
-    build(number_of_points);
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>())
+      build_in_parallel<ConcurrencyTag>(number_of_points);
+    else
+      build(number_of_points);
   }
 
   /// \name Sizes and triangles
@@ -518,6 +558,81 @@ private:
       for(size_type v : triangles_[t]) ids_[vertex_begin_[v] + vertex_size_[v]++] = t;
     neighbors_.assign(3 * triangles_.size(), border_edge);
     for_each_edge([this](size_type, size_type, const Edge* first, const Edge* last) { set_group(first, last); });
+  }
+
+  // build() on TBB's threads, with the same result. The vertex rows are counted and filled with
+  // atomic cursors, then each row is sorted (its triangles are distinct: one order only). The edge
+  // entries of the edges {a, b}, a < b, are written in the pass of a, each by one pass only; the
+  // passes of the vertices run in parallel, each gathering the edges of a by their other end.
+  template <class ConcurrencyTag>
+  void build_in_parallel(std::size_t number_of_points)
+  {
+    const std::size_t nv = number_of_points, m = triangles_.size();
+    vertex_begin_.assign(nv, 0);
+    vertex_size_.assign(nv, 0);
+    vertex_capacity_.assign(nv, 0);
+    {
+      const std::unique_ptr<std::atomic<size_type>[]> cursor(new std::atomic<size_type>[nv]);
+      internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
+      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
+        for(size_type v : triangles_[t]) cursor[v].fetch_add(1, std::memory_order_relaxed);
+      });
+      std::size_t offset = 0;
+      for(std::size_t v = 0; v < nv; ++v) {
+        const size_type d = cursor[v].load(std::memory_order_relaxed);
+        vertex_begin_[v] = offset;
+        vertex_size_[v] = d;
+        vertex_capacity_[v] = d;
+        cursor[v].store(0, std::memory_order_relaxed);
+        offset += d;
+      }
+      ids_.resize(offset);
+      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
+        for(size_type v : triangles_[t])
+          ids_[vertex_begin_[v] + cursor[v].fetch_add(1, std::memory_order_relaxed)] = static_cast<size_type>(t);
+      });
+    }
+    internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) {
+      size_type* b = ids_.data() + vertex_begin_[v];
+      std::sort(b, b + vertex_size_[v]);
+    });
+    neighbors_.assign(3 * m, border_edge);
+    struct End { size_type other; Edge edge; };
+    internal::for_each_block<ConcurrencyTag>(nv, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::vector<End> ends;
+      for(std::size_t a = begin; a != end; ++a) {
+        ends.clear();
+        for(size_type t : triangles_around_vertex(static_cast<size_type>(a))) {
+          const int ia = local_index(t, static_cast<size_type>(a));
+          const size_type next = vertex(t, (ia + 1) % 3), previous = vertex(t, (ia + 2) % 3);
+          if(next > a) ends.push_back(End{next, Edge{t, ia}});
+          if(previous > a) ends.push_back(End{previous, Edge{t, (ia + 2) % 3}});
+        }
+        std::sort(ends.begin(), ends.end(), [](const End& x, const End& y) {
+          return x.other < y.other || (x.other == y.other && x.edge < y.edge);
+        });
+        group_buffer(ends);
+      }
+    });
+  }
+
+  // Writes the edge entries of the groups of `ends` (sorted by other end): one group per edge.
+  template <class Ends>
+  void group_buffer(const Ends& ends)
+  {
+    std::size_t k = 0;
+    while(k < ends.size()) {
+      std::size_t l = k + 1;
+      while(l < ends.size() && ends[l].other == ends[k].other) ++l;
+      const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(l - k);
+      if(n == 2) {
+        set_neighbor(ends[k].edge.triangle, ends[k].edge.index, ends[k + 1].edge.triangle);
+        set_neighbor(ends[k + 1].edge.triangle, ends[k + 1].edge.index, ends[k].edge.triangle);
+      } else if(n > 2) {
+        for(std::size_t j = k; j != l; ++j) set_neighbor(ends[j].edge.triangle, ends[j].edge.index, non_manifold_edge);
+      }
+      k = l;
+    }
   }
 
   // Writes the neighbour entries of [first, last), all the copies of one edge.

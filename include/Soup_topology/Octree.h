@@ -9,12 +9,14 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Octree_morton.h>
 #include <Soup_topology/internal/octree_distance_filters.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/parameters.h>
 
 #include <CGAL/Iterator_range.h>
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/property_map.h>
 #include <CGAL/number_utils.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
@@ -258,31 +260,93 @@ public:
   template <typename Callback>
   void for_each_neighborhood(const FT& radius, Callback callback) const
   {
+    for_each_neighborhood<CGAL::Sequential_tag>(radius, callback);
+  }
+
+  /// the same; with `CGAL::Parallel_tag` (and coordinates stored as `double`) the neighborhoods
+  /// are found on TBB's threads, a batch of leaves at a time, and `callback` is called on the
+  /// calling thread, in Morton order, with the same arguments as the sequential search.
+  /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
+  ///         `CGAL::Parallel_if_available_tag`
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \param radius the largest distance between neighbors
+  /// \param callback called once per point
+  template <typename ConcurrencyTag, typename Callback>
+  void for_each_neighborhood(const FT& radius, Callback callback) const
+  {
     check_radius(radius);
     if(empty())
       return;
     const FT r2 = radius * radius;
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
+    {
+      // The leaves in traversal (Morton) order, cut into groups of about `group_size` points;
+      // a batch of groups is searched in parallel, each group into its own buffer, then the
+      // callbacks of the batch are made in order.
+      std::vector<std::pair<Frame, Node_index>> leaves;
+      traverse([](const Frame&, double&) { return true; },
+               [&](const Frame& f, const Node& nd) { leaves.emplace_back(f, static_cast<Node_index>(&nd - nodes_.data())); });
+      constexpr std::size_t group_size = 2048, batch = 64;
+      std::vector<std::size_t> group_begin{0};
+      for(std::size_t l = 0, count = 0; l < leaves.size(); ++l)
+      {
+        const Node& nd = nodes_[leaves[l].second];
+        count += nd.end - nd.begin;
+        if(count >= group_size || l + 1 == leaves.size())
+        {
+          group_begin.push_back(l + 1);
+          count = 0;
+        }
+      }
+      const std::size_t groups = group_begin.size() - 1;
+      struct Found
+      {
+        std::vector<std::size_t> near;    // the neighborhoods one after the other
+        std::vector<std::size_t> end;     // where the neighborhood of each point ends
+        std::vector<std::uint32_t> point; // the points, in order
+      };
+      std::vector<Found> found(std::min(batch, groups));
+      std::vector<std::size_t> one;
+      for(std::size_t first = 0; first < groups; first += batch)
+      {
+        const std::size_t last = std::min(groups, first + batch);
+        internal::for_each_block<ConcurrencyTag>(last - first, 1, [&](std::size_t g, std::size_t, std::size_t) {
+          Found& out = found[g];
+          out.near.clear();
+          out.end.clear();
+          out.point.clear();
+          std::vector<std::size_t> near;
+          for(std::size_t l = group_begin[first + g]; l != group_begin[first + g + 1]; ++l)
+          {
+            const Node& nd = nodes_[leaves[l].second];
+            for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+            {
+              neighborhood_of(k, leaves[l].first, nd, radius, r2, near);
+              out.near.insert(out.near.end(), near.begin(), near.end());
+              out.end.push_back(out.near.size());
+              out.point.push_back(k);
+            }
+          }
+        });
+        for(std::size_t g = 0; g < last - first; ++g)
+        {
+          const Found& in = found[g];
+          for(std::size_t j = 0, begin = 0; j < in.point.size(); begin = in.end[j], ++j)
+          {
+            one.assign(in.near.begin() + static_cast<std::ptrdiff_t>(begin),
+                       in.near.begin() + static_cast<std::ptrdiff_t>(in.end[j]));
+            callback(std::size_t(ids_[in.point[j]]), static_cast<const std::vector<std::size_t>&>(one));
+          }
+        }
+      }
+      return;
+    }
+    (void)internal::runs_in_parallel<ConcurrencyTag>();
     std::vector<std::size_t> near;
     traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      const double cs = cell_size_[nd.level];
       for(std::uint32_t k = nd.begin; k != nd.end; ++k)
       {
-        near.clear();
-        const Query_point qa = approximate(points_[k]);
-        const double bound = radius_bound(r2, qa.err);
-        bool inside = std::isfinite(bound);
-        for(std::size_t i = 0; i < 3 && inside; ++i)
-        {
-          const double lo = origin_[i] + f.c[i] * cs;
-          inside = qa.c[i] - lo > 2 * bound && (lo + cs) - qa.c[i] > 2 * bound;
-        }
-        if(inside)
-        {
-          scan_leaf(nd, points_[k], qa.c, r2, bound * bound, near);
-          std::sort(near.begin(), near.end());
-        }
-        else
-          vertices_near_point(points_[k], radius, std::back_inserter(near));
+        neighborhood_of(k, f, nd, radius, r2, near);
         callback(std::size_t(ids_[k]), static_cast<const std::vector<std::size_t>&>(near));
       }
     });
@@ -485,6 +549,30 @@ private:
   static constexpr bool double_coordinates = std::is_same<FT, double>::value;
 
   enum class Child_order { OCTANT, NEAREST_FIRST };
+
+  // The neighborhood of the point stored at `k` in leaf `nd` (frame `f`), in increasing order: from
+  // the leaf alone when the ball lies well inside the leaf's box, else from a query from the root.
+  void neighborhood_of(std::uint32_t k, const Frame& f, const Node& nd, const FT& radius, const FT& r2,
+                       std::vector<std::size_t>& near) const
+  {
+    near.clear();
+    const double cs = cell_size_[nd.level];
+    const Query_point qa = approximate(points_[k]);
+    const double bound = radius_bound(r2, qa.err);
+    bool inside = std::isfinite(bound);
+    for(std::size_t i = 0; i < 3 && inside; ++i)
+    {
+      const double lo = origin_[i] + f.c[i] * cs;
+      inside = qa.c[i] - lo > 2 * bound && (lo + cs) - qa.c[i] > 2 * bound;
+    }
+    if(inside)
+    {
+      scan_leaf(nd, points_[k], qa.c, r2, bound * bound, near);
+      std::sort(near.begin(), near.end());
+    }
+    else
+      vertices_near_point(points_[k], radius, std::back_inserter(near));
+  }
 
   // The depth-first traversal of every query. A node is entered if it holds points and
   // `box_test(frame, key)` returns true; `leaf_action(frame, node)` is called on the leaves

@@ -9,12 +9,17 @@
 
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
+#include <numeric>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -35,6 +40,142 @@ struct Index_report
 
 
 namespace internal {
+
+/// `true` if the points of type `Point` are read and copied in parallel with `ConcurrencyTag`:
+/// only for coordinates stored as `double` (lazily exact numbers share state between copies).
+template <class ConcurrencyTag, class Point>
+constexpr bool runs_in_parallel_on_points()
+{
+  return runs_in_parallel<ConcurrencyTag>() &&
+         std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
+}
+
+/// `first_equal_points(n, point)`, the same result computed in parallel when `ConcurrencyTag`
+/// asks for it. Coordinates stored as `double`: the points are cut into 256 partitions by their
+/// hash (equal points share a partition), each partition keeps its points in increasing index
+/// order, and each is welded by its own hash table, so the first point met of every class is its
+/// smallest index, as in the sequential pass. Other number types are welded sequentially: the
+/// comparisons of lazily exact numbers update state shared between the points.
+template <class ConcurrencyTag, class PointAccess>
+std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const PointAccess& point)
+{
+  using Point = std::decay_t<decltype(point(std::size_t(0)))>;
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(!runs_in_parallel<ConcurrencyTag>() || !std::is_same<FT, double>::value) {
+    return first_equal_points(n, point);
+  } else {
+    std::vector<std::uint32_t> first_of(n);
+    if(n == 0) return first_of;
+    {
+      auto hash_of = [&](std::size_t i) {
+        const Point& p = point(i);
+        return mix_bits(double_bits(p.x()) ^ mix_bits(double_bits(p.y()) + 0x9e3779b97f4a7c15ULL) ^
+                        (mix_bits(double_bits(p.z())) << 1));
+      };
+      constexpr std::size_t partitions = 256;
+      const std::size_t block_size = default_block_size, blocks = number_of_blocks(n, block_size);
+      std::vector<std::uint8_t> partition_of(n);
+      // count[p * blocks + b]: the points of block b in partition p; partition-major prefix sums
+      // place the points of a partition in increasing index order.
+      std::vector<std::uint32_t> count(partitions * blocks, 0);
+      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i != end; ++i) {
+          const std::uint8_t q = static_cast<std::uint8_t>(hash_of(i) >> 56);
+          partition_of[i] = q;
+          ++count[q * blocks + b];
+        }
+      });
+      std::vector<std::size_t> partition_begin(partitions + 1, 0);
+      {
+        std::size_t total = 0;
+        for(std::size_t q = 0; q < partitions; ++q) {
+          partition_begin[q] = total;
+          for(std::size_t b = 0; b < blocks; ++b) {
+            const std::size_t c = count[q * blocks + b];
+            count[q * blocks + b] = static_cast<std::uint32_t>(total);
+            total += c;
+          }
+        }
+        partition_begin[partitions] = total;
+      }
+      std::vector<std::uint32_t> order(n);
+      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i != end; ++i)
+          order[count[partition_of[i] * blocks + b]++] = static_cast<std::uint32_t>(i);
+      });
+      std::vector<std::uint8_t>().swap(partition_of);
+      for_each_block<ConcurrencyTag>(partitions, 1, [&](std::size_t q, std::size_t, std::size_t) {
+        const std::uint32_t* ids = order.data() + partition_begin[q];
+        const std::size_t m = partition_begin[q + 1] - partition_begin[q];
+        const std::vector<std::uint32_t> local =
+          first_equal_points(m, [&](std::size_t k) -> const Point& { return point(ids[k]); });
+        for(std::size_t k = 0; k < m; ++k) first_of[ids[k]] = ids[local[k]];
+      });
+    }
+    return first_of;
+  }
+}
+
+/// the first `i` in `[0, n)` for which `bad(i)` holds, or `n` (blocks checked in parallel when
+/// `ConcurrencyTag` asks for it; the smallest index wins whatever the threads).
+template <class ConcurrencyTag, class Predicate>
+std::size_t first_index_where(std::size_t n, const Predicate& bad)
+{
+  if constexpr(!runs_in_parallel<ConcurrencyTag>()) {
+    for(std::size_t i = 0; i < n; ++i)
+      if(bad(i)) return i;
+    return n;
+  } else {
+    std::vector<std::size_t> first(number_of_blocks(n), n);
+    for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i)
+        if(bad(i)) { first[b] = i; return; }
+    });
+    for(const std::size_t i : first)
+      if(i != n) return i;
+    return n;
+  }
+}
+
+/// `index_corners()` computed in parallel (see `first_equal_points_in_parallel()`): the points
+/// are numbered by the rank of their first corner, found by prefix sums over blocks, so the
+/// points, the triangles and their order are those of the sequential pass.
+template <class ConcurrencyTag, class CornerAccess, class PointRange, class FaceRange>
+void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_point, PointRange& points,
+                               FaceRange& faces, Index_report& report)
+{
+  using Face = typename FaceRange::value_type;
+  const std::vector<std::uint32_t> first_of = first_equal_points_in_parallel<ConcurrencyTag>(corners, corner_point);
+  std::vector<std::uint32_t> point_of(corners);
+  points.clear();
+  const std::size_t distinct = compact_in_order<ConcurrencyTag>(
+    corners, [&](std::size_t i) { return first_of[i] == i; },
+    [&](std::size_t i, std::size_t position) { point_of[i] = static_cast<std::uint32_t>(position); });
+  points.resize(distinct);
+  for_each_index<ConcurrencyTag>(corners, [&](std::size_t i) {
+    if(first_of[i] == i) points[point_of[i]] = corner_point(i);
+  });
+  // every first corner has its point now: the later corners read it
+  for_each_index<ConcurrencyTag>(corners, [&](std::size_t i) {
+    if(first_of[i] != i) point_of[i] = point_of[first_of[i]];
+  });
+  const std::size_t m = corners / 3;
+  auto kept = [&](std::size_t k) {
+    const std::uint32_t a = point_of[3 * k], b = point_of[3 * k + 1], c = point_of[3 * k + 2];
+    return a != b && b != c && c != a;
+  };
+  std::vector<std::uint32_t> kept_triangle(m);
+  faces.clear();
+  const std::size_t kept_count = compact_in_order<ConcurrencyTag>(
+    m, kept, [&](std::size_t k, std::size_t position) { kept_triangle[position] = static_cast<std::uint32_t>(k); });
+  faces.resize(kept_count);
+  for_each_index<ConcurrencyTag>(kept_count, [&](std::size_t f) {
+    const std::size_t k = kept_triangle[f];
+    faces[f] = make_triangle<Face>(point_of[3 * k], point_of[3 * k + 1], point_of[3 * k + 2]);
+  });
+  report.collapsed_triangles += m - kept_count;
+  report.vertices = points.size();
+}
 
 /// the exact weld of `corners` finite corners, corner `i` being `corner_point(i)` (triangle
 /// `i / 3`): `points` receives the distinct points in order of first appearance, `faces` the
@@ -80,6 +221,11 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
 /// Expected linear time for kernels whose coordinates are `double` (hashing); O(n log n) for
 /// exact number types (sorting).
 ///
+/// With `CGAL::Parallel_tag` the weld runs on TBB's threads (`doc/Soup_topology/Parallel.md`); the
+/// result is the same, bit for bit and in the same order, on any number of threads.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam TriangleRange a range whose elements are ranges of 3 `Point_3`
 ///         (`std::array<Point_3,3>`, ...)
 /// \tparam PointRange a `std::vector`-like container of the same `Point_3`
@@ -91,7 +237,7 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
 /// \throws Invalid_input if an element of `triangles` does not have 3 points, or if a corner has a
 ///         NaN or infinite coordinate (the message names the triangle and the corner);
 ///         `points` and `faces` are unchanged then.
-template <class TriangleRange, class PointRange, class FaceRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleRange, class PointRange, class FaceRange>
 Index_report index_triangles(const TriangleRange& triangles, PointRange& points, FaceRange& faces)
 {
   using Point = typename PointRange::value_type;
@@ -126,21 +272,30 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
   };
   const std::size_t corners = report.input_corners;
   // A NaN equals nothing, not even itself: it would silently make a point of its own.
-  for(std::size_t i = 0; i < corners; ++i)
-    if(!internal::is_finite_point(corner_point(i)))
-      throw Invalid_input("triangle " + std::to_string(i / 3) + ", corner " + std::to_string(i % 3) +
-                          ": non-finite coordinate");
-  internal::index_corners(corners, corner_point, points, faces, report);
+  // Points of exact number types are handled sequentially (see `runs_in_parallel_on_points()`).
+  using Tag = std::conditional_t<internal::runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
+                                 CGAL::Sequential_tag>;
+  const std::size_t bad = internal::first_index_where<Tag>(
+    corners, [&](std::size_t i) { return !internal::is_finite_point(corner_point(i)); });
+  if(bad != corners)
+    throw Invalid_input("triangle " + std::to_string(bad / 3) + ", corner " + std::to_string(bad % 3) +
+                        ": non-finite coordinate");
+  if constexpr(internal::runs_in_parallel<Tag>())
+    internal::index_corners_in_parallel<Tag>(corners, corner_point, points, faces, report);
+  else
+    internal::index_corners(corners, corner_point, points, faces, report);
   return report;
 }
 
 namespace internal {
 
 // merge_duplicate_points(), returning the new index of every old point.
-template <class PointRange, class FaceRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class FaceRange>
 std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, FaceRange& faces)
 {
   using Point = typename PointRange::value_type;
+  using Tag = std::conditional_t<runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
+                                 CGAL::Sequential_tag>;
   const std::size_t n = points.size();
   std::size_t face_id = 0;
   for(const auto& f : faces) {
@@ -150,12 +305,32 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   if(n >= std::size_t(0xFFFFFFF0u))
     throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
   // A NaN equals nothing, not even itself: it would silently make a point of its own.
-  for(std::size_t i = 0; i < n; ++i)
-    if(!is_finite_point(points[i]))
-      throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate");
+  const std::size_t bad = first_index_where<Tag>(n, [&](std::size_t i) { return !is_finite_point(points[i]); });
+  if(bad != n) throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
   const std::vector<std::uint32_t> first_of =
-    first_equal_points(n, [&](std::size_t i) -> const Point& { return points[i]; });
+    first_equal_points_in_parallel<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; });
   std::vector<std::size_t> new_index(n);
+  if constexpr(runs_in_parallel<Tag>()) {
+    // the kept points are numbered by prefix sums over blocks and copied out of place
+    const std::size_t kept = compact_in_order<Tag>(
+      n, [&](std::size_t i) { return first_of[i] == i; },
+      [&](std::size_t i, std::size_t position) { new_index[i] = position; });
+    for_each_index<Tag>(n, [&](std::size_t i) {
+      if(first_of[i] != i) new_index[i] = new_index[first_of[i]];
+    });
+    if(kept != n) {
+      PointRange compacted;
+      compacted.resize(kept);
+      for_each_index<Tag>(n, [&](std::size_t i) {
+        if(first_of[i] == i) compacted[new_index[i]] = points[i];
+      });
+      points.swap(compacted);
+    }
+    for_each_index<Tag>(faces.size(), [&](std::size_t f) {
+      for(auto& v : faces[f]) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+    });
+    return new_index;
+  }
   std::size_t kept = 0;
   for(std::size_t i = 0; i < n; ++i) {
     if(first_of[i] == i) {

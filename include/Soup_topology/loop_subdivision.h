@@ -11,6 +11,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/parameters.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
 
@@ -18,11 +19,13 @@
 #include <CGAL/Origin.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/property_map.h>
+#include <CGAL/tags.h>
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -103,7 +106,8 @@ struct Loop_level
   }
 
   /// level 0: the edge ids from the edge-neighbor table, the vertex kinds from the crease
-  /// edges and a walk around each vertex.
+  /// edges and a walk around each vertex (the walks in parallel with the tag).
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   void initialize(const Adjacency_tables& adj)
   {
     using size_type = Adjacency_tables::size_type;
@@ -139,11 +143,12 @@ struct Loop_level
         for(Index v : {first_vertex(e), second_vertex(e)})
           if(creases[v] < 3) ++creases[v];
     kind.assign(n, Loop_vertex_kind::CORNER);
-    for(size_type v = 0; v < n; ++v) {
-      if(adj.degree(v) == 0) continue;
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+      const size_type v = static_cast<size_type>(i);
+      if(adj.degree(v) == 0) return;
       if(creases[v] == 2) kind[v] = Loop_vertex_kind::CREASE;
       else if(creases[v] == 0 && is_single_fan(adj, v)) kind[v] = Loop_vertex_kind::SMOOTH;
-    }
+    });
   }
 
   /// `true` if walking across the (manifold) edges around `v` visits all its triangles.
@@ -178,20 +183,20 @@ struct Loop_level
   }
 
   /// writes the triangles of the next level (see `refine()`) into `faces` (resized).
-  template <class FaceRange>
+  template <class ConcurrencyTag = CGAL::Sequential_tag, class FaceRange>
   void write_children(std::size_t n, FaceRange& faces) const
   {
     using Face = typename FaceRange::value_type;
     const std::size_t m = triangles.size();
     faces.resize(4 * m);
-    for(std::size_t t = 0; t < m; ++t) {
+    for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
       const std::array<Index, 3>& v = triangles[t];
       const std::size_t e[3] = {n + edge_of[3 * t], n + edge_of[3 * t + 1], n + edge_of[3 * t + 2]};
       faces[4 * t + 0] = make_triangle<Face>(v[0], e[0], e[2]);
       faces[4 * t + 1] = make_triangle<Face>(v[1], e[1], e[0]);
       faces[4 * t + 2] = make_triangle<Face>(v[2], e[2], e[1]);
       faces[4 * t + 3] = make_triangle<Face>(e[0], e[1], e[2]);
-    }
+    });
   }
 
   /// the next level: triangle `t = (v0, v1, v2)` with edge points `e0, e1, e2` (edge `i` =
@@ -199,13 +204,15 @@ struct Loop_level
   /// `4t + 3 = (e0, e1, e2)`; vertex `v` keeps its index, the point of edge `e` is `n + e`.
   /// The halves of edge `e` become edges `2e` (at its end vertex of smaller index) and `2e + 1`;
   /// the three inner edges of `t` are `2E + 3t + k`. The halves and counts of the new edges follow
-  /// from the old ones without a search.
+  /// from the old ones without a search. Every triangle and every edge is done on its own (in
+  /// parallel with the tag).
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   void refine(std::size_t n)
   {
     const std::size_t m = triangles.size(), E = number_of_edges, E2 = 2 * E + 3 * m;
     std::vector<std::array<Index, 3>> children(4 * m);
     std::vector<Index> child_edges(12 * m);
-    for(std::size_t t = 0; t < m; ++t) {
+    for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
       const std::array<Index, 3> v = triangles[t];
       const Index e[3] = {static_cast<Index>(n + edge_of[3 * t]), static_cast<Index>(n + edge_of[3 * t + 1]),
                           static_cast<Index>(n + edge_of[3 * t + 2])};
@@ -222,7 +229,7 @@ struct Loop_level
       ce[9] = inner + 1;
       ce[10] = inner + 2;
       ce[11] = inner + 0;
-    }
+    });
     // The half of child edge 2e (s = 0) or 2e + 1 (s = 1) inside the children of half h of e.
     auto child_half = [&](Index h, int s) -> Index {
       if(h == none) return none;
@@ -233,21 +240,27 @@ struct Loop_level
     };
     std::vector<Index> h1(E2), h2(E2);
     std::vector<std::uint8_t> c(E2);
-    for(Index e = 0; e < E; ++e)
+    for_each_index<ConcurrencyTag>(E, [&](std::size_t i) {
+      const Index e = static_cast<Index>(i);
       for(int s = 0; s < 2; ++s) {
         h1[2 * e + Index(s)] = child_half(half1[e], s);
         h2[2 * e + Index(s)] = child_half(half2[e], s);
         c[2 * e + Index(s)] = count[e];
       }
-    for(Index t = 0; t < m; ++t)
+    });
+    for_each_index<ConcurrencyTag>(m, [&](std::size_t i) {
+      const Index t = static_cast<Index>(i);
       for(Index k = 0; k < 3; ++k) {
         const Index inner = static_cast<Index>(2 * E + 3 * t + k);
         h1[inner] = 3 * (4 * t + k) + 1;
         h2[inner] = 3 * (4 * t + 3) + (k + 2) % 3;
         c[inner] = 2;
       }
-    kind.reserve(n + E);
-    for(Index e = 0; e < E; ++e) kind.push_back(is_crease(e) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH);
+    });
+    kind.resize(n + E);
+    for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
+      kind[n + e] = is_crease(static_cast<Index>(e)) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH;
+    });
     edge_of.swap(child_edges);
     number_of_edges = E2;
     triangles.swap(children);
@@ -257,11 +270,109 @@ struct Loop_level
   }
 };
 
+/// One level of Loop's rules computed in parallel: the edge points each on their own, the ring
+/// sums per vertex over its edges in increasing edge order (the order of the sequential sums, so
+/// the floating-point results are the same bit for bit).
+template <class ConcurrencyTag, class GT>
+void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
+                             std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
+{
+  using FT = typename GT::FT;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using Index = Loop_level::Index;
+  auto to_vector = gt.construct_vector_3_object();
+  auto add = gt.construct_sum_of_vectors_3_object();
+  auto scale = gt.construct_scaled_vector_3_object();
+  auto translate = gt.construct_translated_point_3_object();
+  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
+  auto vec = [&](Index v) { return to_vector(origin, in[v]); };
+
+  const std::size_t n = in.size(), E = level.number_of_edges;
+  out.resize(n + E);
+  auto ends_of = [&](Index e, Index& a, Index& b) {
+    const Index h = level.half1[e];
+    const std::array<Index, 3>& tr = level.triangles[h / 3];
+    a = tr[h % 3];
+    b = tr[(h % 3 + 1) % 3];
+  };
+  // the edges of every vertex, in increasing order
+  std::vector<std::size_t> first_edge(n + 1, 0);
+  std::vector<Index> edges_of(2 * E);
+  {
+    const std::unique_ptr<std::atomic<Index>[]> cursor(new std::atomic<Index>[n]);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
+    for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
+      Index a, b;
+      ends_of(static_cast<Index>(e), a, b);
+      cursor[a].fetch_add(1, std::memory_order_relaxed);
+      cursor[b].fetch_add(1, std::memory_order_relaxed);
+    });
+    for(std::size_t v = 0; v < n; ++v) {
+      first_edge[v + 1] = first_edge[v] + cursor[v].load(std::memory_order_relaxed);
+      cursor[v].store(0, std::memory_order_relaxed);
+    }
+    for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
+      Index a, b;
+      ends_of(static_cast<Index>(e), a, b);
+      edges_of[first_edge[a] + cursor[a].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
+      edges_of[first_edge[b] + cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
+    });
+  }
+  const FT three(3), eighth(0.125), half(0.5), three_quarters(0.75);
+  for_each_index<ConcurrencyTag>(E, [&](std::size_t i) {
+    const Index e = static_cast<Index>(i);
+    const Index h = level.half1[e];
+    const std::array<Index, 3>& tr = level.triangles[h / 3];
+    const Index k = h % 3;
+    const Index a = tr[k], b = tr[(k + 1) % 3];
+    const Vector va = vec(a), vb = vec(b);
+    if(level.is_crease(e)) {
+      out[n + e] = translate(origin, scale(add(va, vb), half));
+    } else {
+      const Index h2 = level.half2[e];
+      const Index c = tr[(k + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
+      out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
+    }
+  });
+  for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+    const Index v = static_cast<Index>(i);
+    const Loop_vertex_kind kind = level.kind[v];
+    if(kind == Loop_vertex_kind::CORNER) { out[v] = in[v]; return; }
+    std::size_t first = first_edge[v], last = first_edge[v + 1];
+    std::sort(edges_of.begin() + static_cast<std::ptrdiff_t>(first), edges_of.begin() + static_cast<std::ptrdiff_t>(last));
+    Vector sum(CGAL::NULL_VECTOR);
+    std::size_t valence = 0;
+    for(std::size_t j = first; j != last; ++j) {
+      const Index e = edges_of[j];
+      if(level.is_crease(e) != (kind == Loop_vertex_kind::CREASE)) continue;
+      Index a, b;
+      ends_of(e, a, b);
+      sum = add(sum, vec(a == v ? b : a));
+      ++valence;
+    }
+    if(kind == Loop_vertex_kind::SMOOTH) {
+      const double beta_k = loop_beta_value(choice, valence);
+      const FT beta(beta_k);
+      const FT centre(1. - double(valence) * beta_k);
+      out[v] = translate(origin, add(scale(vec(v), centre), scale(sum, beta)));
+    } else {
+      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(sum, eighth)));
+    }
+  });
+}
+
 /// One level of Loop's rules: `out` receives the `n` moved vertices then the `E` edge points.
-template <class GT>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class GT>
 void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
                  std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
 {
+  // Parallel constructions only for double coordinates: lazily exact numbers share state
+  // between the points they were computed from.
+  if constexpr(runs_in_parallel<ConcurrencyTag>() && std::is_same<typename GT::FT, double>::value) {
+    loop_smooth_in_parallel<ConcurrencyTag>(level, in, out, choice, gt);
+    return;
+  }
   using FT = typename GT::FT;
   using Point = typename GT::Point_3;
   using Vector = typename GT::Vector_3;
@@ -462,6 +573,8 @@ public:
         analyze_subdivision_matrix(crease_subdivision_matrix(), false, "crease subdivision matrix"));
     return *crease_;
   }
+  /// the analysis of valence `k`, computed before by `smooth(k)`.
+  const Loop_eigen_analysis& computed_smooth(std::size_t k) const { return *smooth_[k]; }
 private:
   Loop_beta choice_;
   std::vector<std::unique_ptr<Loop_eigen_analysis>> smooth_;
@@ -470,14 +583,17 @@ private:
 
 /// The shared body of `loop_limit_points()` and `loop_limit_tangents()`: calls
 /// `f(v, kind, ring, weights)` for every vertex, `ring` the indices (vertex first) the weights apply to.
-template <class PointRange, class TriangleRange, class F>
+/// With the tag the vertices are visited in parallel (`f` must then only write what belongs to
+/// `v`): the eigen-analyses are computed first, in the order the sequential visit asks for them
+/// (so that a refused matrix is reported as it is there).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange, class F>
 void for_each_limit_stencil(const PointRange& points, const TriangleRange& triangles, Loop_beta choice, F f)
 {
   using Index = Loop_level::Index;
   const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
-  const Adjacency_tables adj(triangles, n);
+  const Adjacency_tables adj(triangles, n, ConcurrencyTag());
   Loop_level level;
-  level.initialize(adj);
+  level.initialize<ConcurrencyTag>(adj);
   // the two crease neighbors of every crease vertex, in edge order
   std::vector<std::array<Index, 2>> crease_ring(n, {Loop_level::none, Loop_level::none});
   for(Index e = 0; e < level.number_of_edges; ++e) {
@@ -487,6 +603,38 @@ void for_each_limit_stencil(const PointRange& points, const TriangleRange& trian
     (crease_ring[b][0] == Loop_level::none ? crease_ring[b][0] : crease_ring[b][1]) = a;
   }
   Loop_mask_cache cache(choice);
+  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    std::vector<std::uint32_t> valence(n, 0);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t v) {
+      if(level.kind[v] == Loop_vertex_kind::SMOOTH)
+        Loop_level::walk_ring(adj, static_cast<Index>(v), [&](Index) { ++valence[v]; });
+    });
+    for(std::size_t v = 0; v < n; ++v) {
+      if(level.kind[v] == Loop_vertex_kind::SMOOTH) cache.smooth(valence[v]);
+      else cache.crease();
+    }
+    const Loop_mask_cache& analyses = cache;
+    const Loop_eigen_analysis& crease = cache.crease();
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+      const Index v = static_cast<Index>(i);
+      std::vector<Index> ring{v};
+      switch(level.kind[v]) {
+      case Loop_vertex_kind::SMOOTH:
+        ring.reserve(std::size_t(valence[v]) + 1);
+        Loop_level::walk_ring(adj, v, [&](Index q) { ring.push_back(q); });
+        f(v, Loop_vertex_kind::SMOOTH, ring, analyses.computed_smooth(ring.size() - 1));
+        break;
+      case Loop_vertex_kind::CREASE:
+        ring.push_back(crease_ring[v][0]);
+        ring.push_back(crease_ring[v][1]);
+        f(v, Loop_vertex_kind::CREASE, ring, crease);
+        break;
+      default:
+        f(v, Loop_vertex_kind::CORNER, ring, crease);
+      }
+    }, 1024);
+    return;
+  }
   std::vector<Index> ring;
   for(Index v = 0; v < n; ++v) {
     ring.clear();
@@ -520,7 +668,8 @@ Loop_beta get_loop_beta(const NamedParameters& np)
 /// `corner_value(p)` at a corner (`p` its point) and to `stencil(combine, analysis)` elsewhere,
 /// where `combine(weights)` is the vector from the origin to the combination of the points of the
 /// ring of `v` (the vertex first) with the weights `weights`.
-template <class Value, class PointRange, class TriangleRange, class NamedParameters, class CornerValue, class Stencil>
+template <class Value, class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters, class CornerValue, class Stencil>
 std::vector<Value> evaluate_limit_stencils(const PointRange& points, const TriangleRange& triangles,
                                            const NamedParameters& np, CornerValue corner_value, Stencil stencil)
 {
@@ -541,7 +690,10 @@ std::vector<Value> evaluate_limit_stencils(const PointRange& points, const Trian
   std::vector<Value> result;
   result.reserve(input.size());
   for(const Point& p : input) result.push_back(corner_value(p));
-  for_each_limit_stencil(points, triangles, get_loop_beta(np),
+  // Constructions in parallel only for double coordinates (lazily exact numbers share state).
+  using Stencil_tag = std::conditional_t<std::is_same<FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
+  (void)runs_in_parallel<ConcurrencyTag>();
+  for_each_limit_stencil<Stencil_tag>(points, triangles, get_loop_beta(np),
     [&](std::size_t v, Loop_vertex_kind kind, const std::vector<std::uint32_t>& ring, const Loop_eigen_analysis& a) {
       if(kind == Loop_vertex_kind::CORNER) return;
       const auto combine = [&](const Eigen::VectorXd& weights) {
@@ -582,6 +734,13 @@ std::vector<Value> evaluate_limit_stencils(const PointRange& points, const Trian
 /// inherited (an edge point is smooth on a smooth edge, a crease vertex on a crease edge).
 /// Linear time and memory per level.
 ///
+/// With `CGAL::Parallel_tag` every rule runs on TBB's threads (for coordinates stored as `double`;
+/// the tables and the edge bookkeeping whatever the coordinates): the points and triangles are
+/// the same, bit for bit and in the same order, on any number of threads
+/// (`doc/Soup_topology/Parallel.md`).
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a resizable random-access container (`std::vector`) whose value type is
 ///         default constructible; its points are read and written through `point_map`
 /// \tparam TriangleRange a `std::vector`-like container of triangles (`std::array<std::size_t,3>`,
@@ -612,7 +771,8 @@ std::vector<Value> evaluate_limit_stencils(const PointRange& points, const Trian
 /// \throws Invalid_input for a face that is not a triangle, a repeated or out-of-range index or a
 ///         non-finite coordinate; `points` and `triangles` are unchanged then.
 /// \sa `loop_limit_points()`, `loop_limit_tangents()`
-template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename PointRange, typename TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 void loop_subdivision(PointRange& points, TriangleRange& triangles,
                       const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -633,29 +793,29 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
 
   const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
   internal::check_finite_points(points, point_map);
-  const Adjacency_tables adj(triangles, n);   // validates the triangles
+  const Adjacency_tables adj(triangles, n, ConcurrencyTag());   // validates the triangles
   std::vector<Point> current;
   current.reserve(n);
   for(const auto& p : points) current.push_back(get(point_map, p));
   if(iterations > 0) {
     internal::Loop_level level;
-    level.initialize(adj);
+    level.initialize<ConcurrencyTag>(adj);
     std::vector<Point> next;
     for(unsigned int it = 0; it < iterations; ++it) {
       const std::uint64_t size = std::uint64_t(current.size()) + level.number_of_edges;
       if(size >= std::uint64_t(Adjacency_tables::non_manifold_edge) ||
          4 * std::uint64_t(level.triangles.size()) >= std::uint64_t(Adjacency_tables::non_manifold_edge))
         throw Invalid_input("loop_subdivision: level " + std::to_string(it + 1) + " would exceed 32-bit indices");
-      internal::loop_smooth(level, current, next, choice, gt);
-      if(it + 1 < iterations) level.refine(current.size());
-      else level.write_children(current.size(), triangles);   // the caller's triangles, from here on
+      internal::loop_smooth<ConcurrencyTag>(level, current, next, choice, gt);
+      if(it + 1 < iterations) level.refine<ConcurrencyTag>(current.size());
+      else level.write_children<ConcurrencyTag>(current.size(), triangles);   // the caller's triangles, from here on
       current.swap(next);
     }
     // Nothing above but the last statement of the loop modified the caller's containers.
     if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&
                  std::is_same<Point_map, CGAL::Identity_property_map<Point>>::value) {
       points.swap(current);
-      if(tables != nullptr) *tables = Adjacency_tables(triangles, points.size());
+      if(tables != nullptr) *tables = Adjacency_tables(triangles, points.size(), ConcurrencyTag());
       return;
     } else {
       points.resize(current.size());
@@ -663,7 +823,7 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
       for(auto& p : points) put(point_map, p, current[i++]);
     }
   }
-  if(tables != nullptr) *tables = Adjacency_tables(triangles, current.size());
+  if(tables != nullptr) *tables = Adjacency_tables(triangles, current.size(), ConcurrencyTag());
 }
 
 /// \ingroup PkgSoupTopologySubdivision
@@ -677,7 +837,10 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
 ///   B-spline), mask `2/3 p + 1/6 (c_0 + c_1)`;
 /// - corner: the point itself.
 ///
-/// Bad input and the vertex kinds are those of `loop_subdivision()`.
+/// Bad input and the vertex kinds are those of `loop_subdivision()`. With `CGAL::Parallel_tag`
+/// the vertices are done on TBB's threads, with the same result on any number of threads.
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a random-access container whose points are read through `point_map`
 /// \tparam TriangleRange a `std::vector`-like container of triangles
 /// \param points the points of the soup
@@ -699,7 +862,8 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
 /// \throws Invalid_input as `loop_subdivision()`, and if a local matrix has not 1 as a simple
 ///         dominant eigenvalue followed by an equal real subdominant pair (it never happens for
 ///         `Loop_beta::LOOP` and `Loop_beta::WARREN`).
-template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename PointRange, typename TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 std::vector<typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits::Point_3>
 loop_limit_points(const PointRange& points, const TriangleRange& triangles,
                   const NamedParameters& np = CGAL::parameters::default_values())
@@ -709,7 +873,7 @@ loop_limit_points(const PointRange& points, const TriangleRange& triangles,
   const GT gt = internal::Soup_np_helper<PointRange, NamedParameters>::get_geom_traits(np);
   const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
   auto translate = gt.construct_translated_point_3_object();
-  return internal::evaluate_limit_stencils<Point>(
+  return internal::evaluate_limit_stencils<Point, ConcurrencyTag>(
     points, triangles, np, [](const Point& p) { return p; },
     [&](const auto& combine, const internal::Loop_eigen_analysis& a) { return translate(origin, combine(a.limit)); });
 }
@@ -727,13 +891,15 @@ loop_limit_points(const PointRange& points, const TriangleRange& triangles,
 /// the null vector: Loop's boundary rules give no subdominant pair there in general. At a corner
 /// both are null vectors.
 ///
+/// \tparam ConcurrencyTag as for `loop_limit_points()`
 /// \tparam PointRange a random-access container whose points are read through `point_map`
 /// \tparam TriangleRange a `std::vector`-like container of triangles
 /// \param points the points of the soup
 /// \param triangles the triangles of the soup, indices into `points`
 /// \param np an optional sequence of named parameters: those of `loop_limit_points()`
 /// \throws Invalid_input as `loop_limit_points()`.
-template <typename PointRange, typename TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename PointRange, typename TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 std::vector<std::array<typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits::Vector_3, 2>>
 loop_limit_tangents(const PointRange& points, const TriangleRange& triangles,
                     const NamedParameters& np = CGAL::parameters::default_values())
@@ -741,7 +907,7 @@ loop_limit_tangents(const PointRange& points, const TriangleRange& triangles,
   using GT = typename internal::Soup_np_helper<PointRange, NamedParameters>::Geom_traits;
   using Vector = typename GT::Vector_3;
   using Tangents = std::array<Vector, 2>;
-  return internal::evaluate_limit_stencils<Tangents>(
+  return internal::evaluate_limit_stencils<Tangents, ConcurrencyTag>(
     points, triangles, np,
     [](const typename GT::Point_3&) { return Tangents{Vector(CGAL::NULL_VECTOR), Vector(CGAL::NULL_VECTOR)}; },
     [](const auto& combine, const internal::Loop_eigen_analysis& a) {

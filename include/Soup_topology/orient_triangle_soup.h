@@ -87,6 +87,10 @@ using Face_graph_output_report = Orientation_report;
 /// A soup that is already a consistently oriented closed manifold keeps its triangles, or has
 /// each closed component reversed as a whole by the policy.
 ///
+/// With `CGAL::Parallel_tag` the adjacency tables are built on TBB's threads; the result is the same.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a `std::vector` of `Point_3` (of a CGAL kernel)
 /// \tparam TriangleRange a `std::vector` of triangles of three indices (`std::array<std::size_t, 3>`, ...)
 /// \tparam NamedParameters a sequence of named parameters
@@ -108,7 +112,8 @@ using Face_graph_output_report = Orientation_report;
 /// \returns what was changed
 /// \throws Invalid_input if a face is not a triangle of in-range, distinct indices, or a point has
 ///         a non-finite coordinate; nothing is changed then.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
                                         const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -128,7 +133,7 @@ Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
   internal::Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
   Orientation_report report;
-  internal::copy_orientation_counts(orienter.run(), report);
+  internal::copy_orientation_counts(orienter.template run<ConcurrencyTag>(), report);
   return report;
 }
 

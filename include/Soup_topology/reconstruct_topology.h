@@ -29,6 +29,7 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
@@ -199,7 +200,8 @@ enum class Exact_weld { TO_DO, DONE };
 /// the steps of the pipeline on a validated soup, in the order `reconstruct_soup()` calls them.
 /// It works on `pts`, the points converted to the traits' points, and repairs `triangles` in
 /// place; `input_index[k]` is the index in the input of the point that `pts[k]` is.
-template <class Geom_traits, class TriangleRange>
+/// `ConcurrencyTag` is passed on to every step.
+template <class Geom_traits, class TriangleRange, class ConcurrencyTag = CGAL::Sequential_tag>
 class Soup_reconstruction
 {
 public:
@@ -239,7 +241,7 @@ public:
   /// points) and removes the triangles that collapse.
   void weld_exact_duplicates()
   {
-    const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map(pts_, triangles_);
+    const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map<ConcurrencyTag>(pts_, triangles_);
     report_.exact_duplicates = input_index_.size() - pts_.size();
     std::vector<std::uint32_t> first(pts_.size());
     for(std::size_t i = exact_index.size(); i-- > 0;) first[exact_index[i]] = input_index_[i];
@@ -258,7 +260,7 @@ public:
   /// builds the adjacency tables and records what they show before the repair.
   void build_tables()
   {
-    tables_.emplace(triangles_, pts_.size());
+    tables_.emplace(triangles_, pts_.size(), ConcurrencyTag());
     report_.border_edges_before = tables_->number_of_border_edges();
     report_.non_manifold_edges_before = tables_->non_manifold_edges().size();
     report_.components_before = tables_->number_of_connected_components();
@@ -287,7 +289,7 @@ public:
     std::vector<std::size_t> sites;
     for(std::size_t round = 0; round < max_rounds; ++round) {
       ++report_.rounds;
-      const Snap_report s = snap_vertices(
+      const Snap_report s = snap_vertices<ConcurrencyTag>(
         pts_, triangles_, *tables_,
         parameters::small_features(policy, parameters::fixed_vertices(static_cast<const std::vector<char>*>(&holds_welds),
                                                                       weld_np.visitor(std::ref(recorder)))));
@@ -296,7 +298,7 @@ public:
       add_weld_report(s, round);
       sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
       std::size_t splits = 0;
-      if(do_split) splits = add_split_report(split_t_junctions(pts_, triangles_, *tables_, weld_np));
+      if(do_split) splits = add_split_report(split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np));
       if(s.merged_vertices == 0 && splits == 0) break;
     }
     std::sort(sites.begin(), sites.end());
@@ -383,7 +385,8 @@ private:
 /// repaired in place. On return `pts` holds the output points and `input_index[k]` is the index
 /// in the input of the point that output point `k` is. With `Exact_weld::DONE` the caller
 /// guarantees that no two points are equal.
-template <class PutPoints, class TriangleRange, class NamedParameters, class Geom_traits>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PutPoints, class TriangleRange, class NamedParameters,
+          class Geom_traits>
 Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRange& triangles, const NamedParameters& np,
                                        const Geom_traits& gt, std::vector<typename Geom_traits::Point_3>& pts,
                                        std::vector<std::uint32_t>& input_index, Exact_weld exact_weld = Exact_weld::TO_DO)
@@ -391,7 +394,7 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   using FT = typename Geom_traits::FT;
-  Soup_reconstruction<Geom_traits, TriangleRange> steps(pts, triangles, input_index, gt);
+  Soup_reconstruction<Geom_traits, TriangleRange, ConcurrencyTag> steps(pts, triangles, input_index, gt);
   put_points(steps);
   const FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
   if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
@@ -427,7 +430,7 @@ void move_output_points(PointRange& points, const PointMap& pm, const std::vecto
 /// place: validated, repaired, and the output points written back into `points`. Points that
 /// are already the traits' points in a `std::vector` read through the identity are moved into
 /// the pipeline and back rather than copied (they come back if the tolerance is refused).
-template <class PointRange, class TriangleRange, class NamedParameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange, class NamedParameters>
 Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRange& triangles, const NamedParameters& np,
                                                 Exact_weld exact_weld)
 {
@@ -445,8 +448,8 @@ Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRang
                std::is_same<PointMap, CGAL::Identity_property_map<Point>>::value) {
     Reconstruction_report report;
     try {
-      report = reconstruct_soup([&](auto& steps) { steps.take_points(points); }, triangles, np, gt, pts, input_index,
-                                exact_weld);
+      report = reconstruct_soup<ConcurrencyTag>([&](auto& steps) { steps.take_points(points); }, triangles, np, gt, pts,
+                                                input_index, exact_weld);
     } catch(const Invalid_input&) {
       if(points.empty()) points.swap(pts);
       throw;
@@ -455,7 +458,8 @@ Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRang
     return report;
   } else {
     const Reconstruction_report report =
-      reconstruct_soup([&](auto& steps) { steps.copy_points(points, pm); }, triangles, np, gt, pts, input_index, exact_weld);
+      reconstruct_soup<ConcurrencyTag>([&](auto& steps) { steps.copy_points(points, pm); }, triangles, np, gt, pts,
+                                       input_index, exact_weld);
     move_output_points(points, pm, input_index);
     return report;
   }
@@ -466,11 +470,12 @@ Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRang
 /// `IO::read_triangle_soup()` return them: the exact weld is not run again (the report's
 /// `exact_duplicates` and `collapsed_triangles` are 0). The soup is validated as by the public
 /// function; that no two points are equal is trusted, not checked.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Reconstruction_report reconstruct_exactly_welded_soup(PointRange& points, TriangleRange& triangles,
                                                       const NamedParameters& np = CGAL::parameters::default_values())
 {
-  return reconstruct_soup_in_place(points, triangles, np, Exact_weld::DONE);
+  return reconstruct_soup_in_place<ConcurrencyTag>(points, triangles, np, Exact_weld::DONE);
 }
 
 /// adds what writing into a FaceGraph did to `report`.
@@ -511,6 +516,12 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// the output points. Only the point map is written: other data held by the elements (another
 /// property of a `CGAL::Point_set_3`, say) is not moved with the points.
 ///
+/// With `CGAL::Parallel_tag` the data-parallel steps (exact weld, tables, candidate searches) run
+/// on TBB's threads; the output and the report are the same on any number of threads
+/// (`doc/Soup_topology/Parallel.md`).
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a range of elements with `size()` and `resize()` whose iterators are
 ///         random access, e.g. `std::vector<Point_3>`, `std::vector<std::array<double, 3>>` (with a
 ///         point map) or `CGAL::Point_set_3` (with its `point_map()`)
@@ -551,14 +562,15 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
 ///         in a face, a non-finite coordinate or an invalid tolerance; `points` and `triangles`
 ///         are unchanged then.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters,
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters,
           std::enable_if_t<internal::is_named_parameters<NamedParameters>::value &&
                              !internal::is_named_parameters<std::remove_const_t<TriangleRange>>::value,
                            int> = 0>
 Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& triangles,
                                            const NamedParameters& np = CGAL::parameters::default_values())
 {
-  return internal::reconstruct_soup_in_place(points, triangles, np, internal::Exact_weld::TO_DO);
+  return internal::reconstruct_soup_in_place<ConcurrencyTag>(points, triangles, np, internal::Exact_weld::TO_DO);
 }
 
 /// \ingroup PkgSoupTopologyPipeline
@@ -567,13 +579,14 @@ Reconstruction_report reconstruct_topology(PointRange& points, TriangleRange& tr
 /// `points` and `triangles` are not changed. The points written are those of `points` (read
 /// through `point_map`), so they must convert to the point type of `mesh`.
 ///
+/// \tparam ConcurrencyTag as for the function above
 /// \param points the points of the soup (not changed)
 /// \param triangles the triangles of the soup, indices into `points` (not changed)
 /// \param mesh receives the repaired surface (added to what it holds)
 /// \param np_soup the parameters of `reconstruct_topology()` for the soup (`point_map` may be
 ///        a readable map only)
 /// \param np_mesh parameters for the mesh: `vertex_point_map`
-template <class PointRange, class TriangleRange, class PolygonMesh,
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange, class PolygonMesh,
           class NamedParametersSoup = CGAL::parameters::Default_named_parameters,
           class NamedParametersMesh = CGAL::parameters::Default_named_parameters,
           std::enable_if_t<!internal::is_named_parameters<PolygonMesh>::value, int> = 0>
@@ -594,8 +607,8 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
   for(const auto& f : triangles) tris.push_back(internal::triangle_indices(f));
   std::vector<typename Geom_traits::Point_3> pts;
   std::vector<std::uint32_t> input_index;
-  Reconstruction_report report = internal::reconstruct_soup([&](auto& steps) { steps.copy_points(points, pm); }, tris,
-                                                            np_soup, gt, pts, input_index);
+  Reconstruction_report report = internal::reconstruct_soup<ConcurrencyTag>(
+    [&](auto& steps) { steps.copy_points(points, pm); }, tris, np_soup, gt, pts, input_index);
   std::vector<Point> out;
   out.reserve(input_index.size());
   for(const std::size_t i : input_index) out.push_back(get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(i))));

@@ -14,6 +14,7 @@
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/tags.h>
 
 #include <cstddef>
 #include <vector>
@@ -140,6 +141,12 @@ class Snap_visitor_holder;
 /// `points`, unreferenced (`reconstruct_topology()` removes them). Collapsed triangles are removed
 /// from `triangles` and `tables` (the others keep their order).
 ///
+/// **Threads.** With `CGAL::Parallel_tag` the steps that are data-parallel run on TBB's threads;
+/// the result (triangles, tables, report, visitor calls) is the same on any number of threads
+/// (`doc/Soup_topology/Parallel.md`).
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a random-access range of triangles, each a random-access range of 3 indices
 /// \param points the points of the soup, pairwise distinct (as the exact weld leaves them); not changed
@@ -172,7 +179,8 @@ class Snap_visitor_holder;
 /// \throws Invalid_input for a negative, NaN or infinite tolerance, a non-finite coordinate,
 ///         tables that do not match the soup, or `Small_features::COLLAPSE` with a triangle range
 ///         without `resize()`. Nothing is changed then.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -198,7 +206,7 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   const auto point_copy = NP_helper::read_points(points, np);
   internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_copy, tables, eps, fixed, kernel,
                                                                                   visitor.get(), policy);
-  return worker.run(triangles);
+  return worker.template run<ConcurrencyTag>(triangles);
 }
 
 /// \ingroup PkgSoupTopologyWelding
@@ -206,12 +214,13 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
 /// \param points the points of the soup, pairwise distinct; not changed
 /// \param triangles the triangles of the soup, as indices into `points`; the merged vertices are replaced
 /// \param np the named parameters of `snap_vertices(points, triangles, tables, np)`
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles,
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
-  Adjacency_tables tables(triangles, points.size());
-  return snap_vertices(points, triangles, tables, np);
+  Adjacency_tables tables(triangles, points.size(), ConcurrencyTag());
+  return snap_vertices<ConcurrencyTag>(points, triangles, tables, np);
 }
 
 } // namespace Soup_topology

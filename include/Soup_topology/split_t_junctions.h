@@ -16,6 +16,7 @@
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/tags.h>
 
 #include <cstddef>
 
@@ -70,6 +71,12 @@ struct Split_report
 /// New triangles are appended to `triangles` (which must support `push_back`), in the order of
 /// the border edges, then along each edge.
 ///
+/// With `CGAL::Parallel_tag` the search for the vertices near each border edge runs on TBB's
+/// threads, its results put together in the order of the border edges: the result is the same
+/// on any number of threads (`doc/Soup_topology/Parallel.md`).
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a random-access range of triangles, each a random-access range of 3
 ///         indices, with `push_back()`
@@ -93,7 +100,8 @@ struct Split_report
 /// \cgalNamedParamsEnd
 /// \returns a `Split_report`.
 /// \throws Invalid_input for an invalid tolerance, non-finite coordinates or mismatched tables.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Split_report split_t_junctions(const PointRange& points, TriangleRange& triangles, Adjacency_tables& tables,
                                const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -105,7 +113,7 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   const Kernel kernel = NP_helper::get_geom_traits(np);
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   internal::T_junction_splitter<Kernel, Split_report> splitter(NP_helper::read_points(points, np), tables, kernel, eps);
-  const Split_report report = splitter.run();
+  const Split_report report = splitter.template run<ConcurrencyTag>();
   // Write the triangles back: the split ones and the new ones.
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {
     const Adjacency_tables::Triangle& tr = tables.triangle(t);
@@ -120,12 +128,13 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
 /// \param points the points of the soup
 /// \param triangles the triangles of the soup: split triangles are rewritten, new ones appended
 /// \param np the named parameters of the function above
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Split_report split_t_junctions(const PointRange& points, TriangleRange& triangles,
                                const NamedParameters& np = CGAL::parameters::default_values())
 {
-  Adjacency_tables tables(triangles, points.size());
-  return split_t_junctions(points, triangles, tables, np);
+  Adjacency_tables tables(triangles, points.size(), ConcurrencyTag());
+  return split_t_junctions<ConcurrencyTag>(points, triangles, tables, np);
 }
 
 } // namespace Soup_topology

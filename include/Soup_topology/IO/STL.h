@@ -13,7 +13,11 @@
 #define SOUP_TOPOLOGY_IO_STL_H
 
 #include <Soup_topology/IO/Read_error.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/reader_input.h>
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/tags.h>
 
 #include <array>
 #include <cctype>
@@ -23,6 +27,7 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace Soup_topology {
@@ -217,10 +222,22 @@ struct STL_prefix_check
 /// token that is not entirely a number, anything but a new solid after `endsolid`, a file that
 /// is neither (no `solid` and a size that no binary count explains). `triangles` is left
 /// unchanged then. NaN and infinite coordinates are read (`read_triangle_soup()` refuses them).
-template <class Point>
+/// With `CGAL::Parallel_tag` the facets of a binary file are decoded on TBB's threads (for points
+/// whose coordinates are stored as `double`), with the same result.
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
+/// \param data the bytes of the file
+/// \param size the number of bytes
+/// \param triangles receives the triangles read (appended)
+/// \param name the name of the input in error messages
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point>
 STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vector<std::array<Point, 3>>& triangles,
                                    const std::string& name = "STL")
 {
+  constexpr bool parallel_decode =
+    Soup_topology::internal::runs_in_parallel<ConcurrencyTag>() &&
+    std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
+  using Decode_tag = std::conditional_t<parallel_decode, ConcurrencyTag, CGAL::Sequential_tag>;
   STL_read_result result;
   std::vector<std::array<Point, 3>> read;
   const char* const end = data + size;
@@ -259,8 +276,9 @@ STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vect
     result.binary = true;
     const std::uint32_t n = internal::binary_STL_facet_count(data, size, name);
     read.resize(n);
-    for(std::size_t f = 0; f < n; ++f)
+    Soup_topology::internal::for_each_index<Decode_tag>(n, [&](std::size_t f) {
       for(std::size_t k = 0; k < 3; ++k) read[f][k] = internal::binary_STL_corner<Point>(data, 3 * f + k);
+    });
   }
   result.triangles = read.size();
   triangles.insert(triangles.end(), read.begin(), read.end());
@@ -269,11 +287,11 @@ STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vect
 
 /// \ingroup PkgSoupTopologyIO
 /// \brief reads the triangles of an STL file held in `data`, see above.
-template <class Point>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point>
 STL_read_result read_STL_triangles(const std::string& data, std::vector<std::array<Point, 3>>& triangles,
                                    const std::string& name = "STL")
 {
-  return read_STL_triangles(data.data(), data.size(), triangles, name);
+  return read_STL_triangles<ConcurrencyTag>(data.data(), data.size(), triangles, name);
 }
 
 /// \ingroup PkgSoupTopologyIO

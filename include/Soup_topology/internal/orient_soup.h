@@ -67,10 +67,13 @@ public:
     : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size())
   {}
 
+  /// orients the soup; with the tag the tables are built on TBB's threads (the traversals of the
+  /// patches are sequential: their decisions follow an order).
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   Counts run()
   {
     remove_repeated_triangles();
-    tables_ = Adjacency_tables(triangles_, points_.size());
+    tables_ = Adjacency_tables(triangles_, points_.size(), ConcurrencyTag());
     orient_patches();
     separate_fans();
     find_closed_patches();

@@ -177,11 +177,12 @@ public:
   }
 
   /// runs the weld and writes the triangles it changed back into `triangles`.
-  template <class TriangleRange>
+  template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleRange>
   Snap_report run(TriangleRange& triangles)
   {
     count_short_edges();
-    collect_candidates();
+    parallel_ = runs_in_parallel<ConcurrencyTag>();
+    collect_candidates<ConcurrencyTag>();
     if(candidates_.size() < 2) {
       report_.border_edges_after = report_.border_edges_before;
       return report_;
@@ -224,16 +225,34 @@ private:
       }
   }
 
-  // Candidates: the end points of border edges, in increasing index order.
+  // Candidates: the end points of border edges, in increasing index order (a vertex is a
+  // candidate when one of its triangles has a border edge at it: each vertex is decided on its
+  // own, so the vertices are decided in parallel with the tag).
+  template <class ConcurrencyTag>
   void collect_candidates()
   {
-    std::vector<char> on_border(points_.size(), 0);
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
-      for(int i = 0; i < 3; ++i)
-        if(tables_.is_border_edge(t, i))
-          on_border[tables_.vertex(t, i)] = on_border[tables_.vertex(t, (i + 1) % 3)] = 1;
-    for(size_type v = 0; v < points_.size(); ++v)
-      if(on_border[v]) candidates_.push_back(v);
+    if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+      auto on_border = [&](std::size_t v) {
+        for(size_type t : tables_.triangles_around_vertex(static_cast<size_type>(v))) {
+          const int i = tables_.local_index(t, static_cast<size_type>(v));
+          if(tables_.is_border_edge(t, i) || tables_.is_border_edge(t, (i + 2) % 3)) return true;
+        }
+        return false;
+      };
+      const std::size_t n = points_.size();
+      std::vector<size_type> found(n);
+      const std::size_t count = compact_in_order<ConcurrencyTag>(
+        n, on_border, [&](std::size_t v, std::size_t position) { found[position] = static_cast<size_type>(v); });
+      candidates_.assign(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(count));
+    } else {
+      std::vector<char> on_border(points_.size(), 0);
+      for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
+        for(int i = 0; i < 3; ++i)
+          if(tables_.is_border_edge(t, i))
+            on_border[tables_.vertex(t, i)] = on_border[tables_.vertex(t, (i + 1) % 3)] = 1;
+      for(size_type v = 0; v < points_.size(); ++v)
+        if(on_border[v]) candidates_.push_back(v);
+    }
     report_.candidate_vertices = candidates_.size();
   }
 
@@ -297,7 +316,8 @@ private:
       for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
         for(size_type v : tables_.triangle(t)) mate[v] = value;
     };
-    tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
+    // With the tag the octree finds the neighborhoods in parallel; the calls come in the same order.
+    auto join = [&](std::size_t c, const std::vector<std::size_t>& found) {
       if(!collapse_) mark_mates(c, 1);
       row_start_[c] = row_.size();
       for(std::size_t d : found) {
@@ -307,7 +327,11 @@ private:
       }
       row_end_[c] = row_.size();
       if(!collapse_) mark_mates(c, 0);
-    });
+    };
+    if(parallel_)
+      tree_->template for_each_neighborhood<CGAL::Parallel_if_available_tag>(eps_, join);
+    else
+      tree_->for_each_neighborhood(eps_, join);
   }
 
   void refuse_same_triangle_pairs()
@@ -585,6 +609,7 @@ private:
   std::vector<Pair> same_triangle_pairs_;
   Union_find components_;
   bool dense_ = false;
+  bool parallel_ = false; // the neighborhoods are searched in parallel
   std::vector<std::uint32_t> row_;                      // neighbours of each candidate, by row
   std::vector<std::size_t> row_start_, row_end_;
   // Clusters.

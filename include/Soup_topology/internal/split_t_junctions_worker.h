@@ -14,12 +14,14 @@
 #include <Soup_topology/internal/tolerance_graph.h>
 
 #include <CGAL/property_map.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -66,6 +68,7 @@ public:
   T_junction_splitter& operator=(const T_junction_splitter&) = delete;
 
   /// runs every step; the tables are updated, `changed_triangles()` lists what to write back.
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   Report run()
   {
     report_.tolerance = CGAL::to_double(eps_);
@@ -73,7 +76,7 @@ public:
     border_ = tables_.border_edges();
     if(border_.empty()) return report_;
     index_border_vertices();
-    collect_claims();
+    collect_claims<ConcurrencyTag>();
     give_each_vertex_to_its_nearest_edge();
     split_edges();
     report_.border_edges_after = tables_.number_of_border_edges();
@@ -140,19 +143,51 @@ private:
     }
   }
 
-  // Step 2. Candidate (edge, vertex) pairs: every vertex near a border edge is decided.
+  // What the decisions of step 2 found: the claims and the counts they add to the report.
+  struct Decisions
+  {
+    std::vector<std::pair<size_type, std::uint32_t>> claims;
+    std::size_t refused_overlap = 0;
+    std::size_t ambiguous = 0;
+  };
+
+  // Step 2. Candidate (edge, vertex) pairs: every vertex near a border edge is decided. The edges
+  // are independent: with the tag (and double coordinates, whose predicates share no lazily
+  // computed state) blocks of edges are decided in parallel and their decisions put together in
+  // the order of the edges.
+  template <class ConcurrencyTag>
   void collect_claims()
   {
     pending_.resize(border_.size());
-    std::vector<std::size_t> found;
-    for(std::size_t k = 0; k < border_.size(); ++k) {
-      const Adjacency_tables::Edge& e = border_[k];
-      const size_type a = tables_.vertex(e.triangle, e.index), b = tables_.vertex(e.triangle, (e.index + 1) % 3);
-      pending_[k] = Pending_edge{a, b, {}};
-      found.clear();
-      find_vertices_near_edge(a, b, found);
-      for(std::size_t f : found) decide_candidate(k, border_vertices_[f]);
+    auto decide_edges = [&](std::size_t begin, std::size_t end, Decisions& out) {
+      std::vector<std::size_t> found;
+      for(std::size_t k = begin; k < end; ++k) {
+        const Adjacency_tables::Edge& e = border_[k];
+        const size_type a = tables_.vertex(e.triangle, e.index), b = tables_.vertex(e.triangle, (e.index + 1) % 3);
+        pending_[k] = Pending_edge{a, b, {}};
+        found.clear();
+        find_vertices_near_edge(a, b, found);
+        for(std::size_t f : found) decide_candidate(k, border_vertices_[f], out);
+      }
+    };
+    Decisions all;
+    if constexpr(runs_in_parallel<ConcurrencyTag>() && std::is_same<FT, double>::value) {
+      const std::size_t block_size = 1024;
+      std::vector<Decisions> per_block(number_of_blocks(border_.size(), block_size));
+      for_each_block<ConcurrencyTag>(border_.size(), block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        decide_edges(begin, end, per_block[b]);
+      });
+      for(Decisions& d : per_block) {
+        all.claims.insert(all.claims.end(), d.claims.begin(), d.claims.end());
+        all.refused_overlap += d.refused_overlap;
+        all.ambiguous += d.ambiguous;
+      }
+    } else {
+      decide_edges(0, border_.size(), all);
     }
+    claims_.insert(claims_.end(), all.claims.begin(), all.claims.end());
+    report_.refused_overlap += all.refused_overlap;
+    report_.ambiguous += all.ambiguous;
   }
 
   // The positions in `border_vertices_` of the border vertices within the tolerance of [a,b].
@@ -180,7 +215,7 @@ private:
 
   // Decides whether vertex `c`, near border edge `k`, is a T-junction of it (a claim), a vertex
   // whose split would overlap the other side, or an ambiguous one.
-  void decide_candidate(std::size_t k, size_type c)
+  void decide_candidate(std::size_t k, size_type c, Decisions& out) const
   {
     const Adjacency_tables::Edge& e = border_[k];
     const size_type a = pending_[k].a, b = pending_[k].b;
@@ -196,9 +231,9 @@ private:
     const bool close_to_b = within_twice_the_tolerance(c, b) && !share_triangle(c, b);
     bool along = false, overlap_only = false;
     classify_border_edges_of(c, e.triangle, a, b, apex, close_to_a, close_to_b, along, overlap_only);
-    if(along) claims_.emplace_back(c, static_cast<std::uint32_t>(k));
-    else if(overlap_only) ++report_.refused_overlap;
-    else if(close_to_a || close_to_b) ++report_.ambiguous;
+    if(along) out.claims.emplace_back(c, static_cast<std::uint32_t>(k));
+    else if(overlap_only) ++out.refused_overlap;
+    else if(close_to_a || close_to_b) ++out.ambiguous;
   }
 
   // Looks for a border edge of c, in another triangle than `t`, running along [a,b]: `along` if

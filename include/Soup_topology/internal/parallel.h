@@ -1,0 +1,160 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Deterministic parallel helpers behind CGAL's `ConcurrencyTag`. Work is cut into blocks of a
+// fixed size that does not depend on the number of threads, results of blocks are put together
+// in block order, so that every helper gives the same result as its sequential run, on any
+// number of threads.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_PARALLEL_H
+#define SOUP_TOPOLOGY_INTERNAL_PARALLEL_H
+
+#include <CGAL/tags.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#if defined(__SANITIZE_THREAD__)
+#include <sanitizer/tsan_interface.h>
+#endif
+#endif
+
+#include <algorithm>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// `true` if `ConcurrencyTag` asks for the parallel code (`CGAL::Parallel_tag`, or
+/// `CGAL::Parallel_if_available_tag` when TBB is linked). Asking for `CGAL::Parallel_tag`
+/// without TBB is a compile-time error, as in CGAL's point-set functions.
+template <class ConcurrencyTag>
+constexpr bool runs_in_parallel()
+{
+  static_assert(std::is_convertible<ConcurrencyTag, CGAL::Sequential_tag>::value,
+                "ConcurrencyTag must be CGAL::Sequential_tag, CGAL::Parallel_tag or CGAL::Parallel_if_available_tag");
+#if defined(CGAL_LINKED_WITH_TBB)
+  return std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value;
+#else
+  static_assert(!std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value,
+                "Parallel_tag is enabled but TBB is unavailable.");
+  return false;
+#endif
+}
+
+/// the number of elements of a block of `for_each_block()` unless the caller gives one.
+constexpr std::size_t default_block_size = std::size_t(1) << 14;
+
+/// the number of blocks of `block_size` elements that cover `n` elements.
+inline std::size_t number_of_blocks(std::size_t n, std::size_t block_size = default_block_size)
+{
+  return (n + block_size - 1) / block_size;
+}
+
+/// calls `f(block, begin, end)` for every block `[begin, end)` of `block_size` elements of
+/// `[0, n)` (the last one shorter), in parallel when `ConcurrencyTag` asks for it. The blocks do
+/// not depend on the number of threads.
+template <class ConcurrencyTag, class F>
+void for_each_block(std::size_t n, std::size_t block_size, const F& f)
+{
+  const std::size_t blocks = number_of_blocks(n, block_size);
+  auto run = [&](std::size_t b) { f(b, b * block_size, std::min(n, (b + 1) * block_size)); };
+#if defined(CGAL_LINKED_WITH_TBB)
+  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    if(blocks > 1) {
+#if defined(__SANITIZE_THREAD__)
+      // TBB hands its tasks over inside its (uninstrumented) library: ThreadSanitizer is told
+      // that the blocks start after the call and end before its return, as TBB guarantees.
+      char started = 0, finished = 0;
+      __tsan_release(&started);
+#endif
+      tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, blocks, 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+#if defined(__SANITIZE_THREAD__)
+          __tsan_acquire(&started);
+#endif
+          for(std::size_t b = r.begin(); b != r.end(); ++b) run(b);
+#if defined(__SANITIZE_THREAD__)
+          __tsan_release(&finished);
+#endif
+        },
+        tbb::simple_partitioner());
+#if defined(__SANITIZE_THREAD__)
+      __tsan_acquire(&finished);
+#endif
+      return;
+    }
+  }
+#else
+  (void)runs_in_parallel<ConcurrencyTag>();
+#endif
+  for(std::size_t b = 0; b < blocks; ++b) run(b);
+}
+
+/// calls `f(i)` for every `i` in `[0, n)`, in parallel when `ConcurrencyTag` asks for it; the
+/// calls must be independent of each other.
+template <class ConcurrencyTag, class F>
+void for_each_index(std::size_t n, const F& f, std::size_t block_size = default_block_size)
+{
+  for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t i = begin; i != end; ++i) f(i);
+  });
+}
+
+/// turns `counts` into their exclusive prefix sums and returns the total (sequential: callers
+/// use it on one count per block or per element of a table built once).
+template <class Count>
+std::size_t exclusive_prefix_sums(std::vector<Count>& counts)
+{
+  std::size_t total = 0;
+  for(Count& c : counts) {
+    const std::size_t here = static_cast<std::size_t>(c);
+    c = static_cast<Count>(total);
+    total += here;
+  }
+  return total;
+}
+
+/// the elements `i` of `[0, n)` kept by `keep(i)`, with `out(i, position)` called for each at its
+/// position among the kept ones, in the order of `i` (count by blocks, prefix sums over the
+/// blocks, then place): the result does not depend on the number of threads. Returns the number
+/// kept.
+template <class ConcurrencyTag, class Keep, class Out>
+std::size_t compact_in_order(std::size_t n, const Keep& keep, const Out& out, std::size_t block_size = default_block_size)
+{
+  std::vector<std::size_t> kept(number_of_blocks(n, block_size), 0);
+  for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::size_t c = 0;
+    for(std::size_t i = begin; i != end; ++i) c += keep(i) ? 1 : 0;
+    kept[b] = c;
+  });
+  const std::size_t total = exclusive_prefix_sums(kept);
+  for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::size_t position = kept[b];
+    for(std::size_t i = begin; i != end; ++i)
+      if(keep(i)) out(i, position++);
+  });
+  return total;
+}
+
+/// appends the per-block buffers `buffers[0], buffers[1], ...` to `out`, in block order.
+template <class T>
+void concatenate_in_block_order(std::vector<std::vector<T>>& buffers, std::vector<T>& out)
+{
+  std::size_t total = out.size();
+  for(const std::vector<T>& b : buffers) total += b.size();
+  out.reserve(total);
+  for(std::vector<T>& b : buffers) {
+    out.insert(out.end(), b.begin(), b.end());
+    std::vector<T>().swap(b);
+  }
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_PARALLEL_H

@@ -1,0 +1,507 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Determinism of the parallel code: every function that takes a ConcurrencyTag gives, with
+// CGAL::Parallel_if_available_tag on 1, 2, 3 and 8 threads (8 oversubscribes the machines the
+// tests run on), exactly the output of CGAL::Sequential_tag: the points bit for bit, the triangles
+// and their order, the reports and the visitor's calls. Built without TBB the parallel tag is the
+// sequential one and the tests compare the sequential code with itself.
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/IO/STL.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/loop_subdivision.h>
+#include <Soup_topology/orient_triangle_soup.h>
+#include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/split_t_junctions.h>
+
+#include "soup_generators.h"
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/global_control.h>
+#endif
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Parallel = CGAL::Parallel_if_available_tag;
+
+/// calls `f(threads)` with TBB limited to 1, 2, 3 and 8 threads (once, sequentially, without TBB).
+template <class F>
+void for_each_thread_count(const F& f)
+{
+#if defined(CGAL_LINKED_WITH_TBB)
+  for(const int threads : {1, 2, 3, 8}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    SCOPED_TRACE("threads: " + std::to_string(threads));
+    f(threads);
+  }
+#else
+  SCOPED_TRACE("built without TBB");
+  f(1);
+#endif
+}
+
+/// the bit patterns of the coordinates (so that -0.0 and 0.0, or two NaNs, are told apart).
+std::vector<std::uint64_t> bits(const std::vector<Point>& points)
+{
+  std::vector<std::uint64_t> result;
+  result.reserve(3 * points.size());
+  for(const Point& p : points)
+    for(const double c : {p.x(), p.y(), p.z()}) {
+      std::uint64_t u;
+      std::memcpy(&u, &c, sizeof u);
+      result.push_back(u);
+    }
+  return result;
+}
+
+std::vector<std::uint64_t> bits(const std::vector<Epeck::Point_3>& points)
+{
+  std::vector<Point> approximate;
+  approximate.reserve(points.size());
+  for(const auto& p : points) approximate.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  return bits(approximate);
+}
+
+auto fields(const ST::Index_report& r)
+{
+  return std::make_tuple(r.input_triangles, r.input_corners, r.vertices, r.collapsed_triangles);
+}
+
+auto fields(const ST::Reconstruction_report& r)
+{
+  return std::make_tuple(r.tolerance, r.input_points, r.input_triangles, r.exact_duplicates, r.collapsed_triangles,
+                         r.rounds, r.snapped_vertices, r.clusters, r.refused_same_triangle, r.refused_degenerate,
+                         r.refused_flip, r.refused_holds_welds, r.ambiguous_sites, r.short_edges, r.t_junctions,
+                         r.split_triangles, r.refused_splits, r.ambiguous_t_junctions, r.border_edges_before,
+                         r.border_edges_after, r.non_manifold_edges_before, r.non_manifold_edges_after,
+                         r.non_manifold_vertices_after, r.components_before, r.components, r.max_displacement,
+                         r.removed_points, r.output_points, r.output_triangles, r.duplicate_triangles,
+                         r.orientation_flips, r.duplicated_points, r.triangulated_polygons, r.unclipped_corners);
+}
+
+auto fields(const ST::Snap_report& r)
+{
+  return std::make_tuple(r.tolerance, r.candidate_vertices, r.merged_vertices, r.clusters, r.refused_same_triangle,
+                         r.refused_degenerate, r.refused_flip, r.refused_holds_welds, r.ambiguous_sites, r.short_edges,
+                         r.border_edges_before, r.border_edges_after, r.max_displacement);
+}
+
+auto fields(const ST::Split_report& r)
+{
+  return std::make_tuple(r.tolerance, r.t_junctions, r.split_triangles, r.refused_overlap, r.refused_degenerate,
+                         r.refused_flip, r.ambiguous, r.border_edges_before, r.border_edges_after);
+}
+
+/// every table entry of `a` equals that of `b`.
+void expect_same_tables(const ST::Adjacency_tables& a, const ST::Adjacency_tables& b)
+{
+  ASSERT_EQ(a.number_of_vertices(), b.number_of_vertices());
+  ASSERT_EQ(a.triangles(), b.triangles());
+  std::size_t different = 0;
+  for(ST::Adjacency_tables::size_type t = 0; t < a.number_of_triangles(); ++t)
+    for(int i = 0; i < 3; ++i) different += a.neighbor(t, i) != b.neighbor(t, i);
+  for(ST::Adjacency_tables::size_type v = 0; v < a.number_of_vertices(); ++v) {
+    const auto x = a.triangles_around_vertex(v), y = b.triangles_around_vertex(v);
+    different += !(x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin()));
+  }
+  EXPECT_EQ(different, 0u);
+}
+
+/// Every call of the weld's visitor, in order.
+struct Recording_visitor
+{
+  std::vector<std::array<std::size_t, 3>> calls;
+  void on_merge(std::size_t duplicate, std::size_t representative) { calls.push_back({0, duplicate, representative}); }
+  void on_refusal(std::size_t vertex, std::size_t representative, ST::Refusal_reason reason)
+  {
+    calls.push_back({1 + static_cast<std::size_t>(reason), vertex, representative});
+  }
+};
+
+struct Mesh_data
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+};
+
+Mesh_data load(const std::string& relative)
+{
+  Mesh_data m;
+  soup_test::read_data_mesh(relative, m.points, m.triangles);
+  return m;
+}
+
+double diagonal(const std::vector<Point>& points)
+{
+  return ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+}
+
+/// the triangles in a random order, each with its corners rotated at random.
+template <class T>
+void shuffle_triangles(std::vector<T>& triangles, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::shuffle(triangles.begin(), triangles.end(), rng);
+  for(T& t : triangles) std::rotate(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(rng() % 3), t.end());
+}
+
+/// The real meshes of the shared data folder (clean, CAD, scanned with defects).
+const char* const real_meshes[] = {"clean/elephant.off", "clean/fandisk.off.xz", "clean/ChineseDragon-10kv.off.xz",
+                                   "cgal_repair/pig.stl.xz", "cad/ALSTOM_TEST4.off",
+                                   "cgal_repair/data_stitching/nm_cubes.off",
+                                   "cgal_repair/data_stitching/non_manifold.off"};
+
+/// A T-junction soup (robustness soup of soup_generators.h) from a real mesh.
+soup_test::T_junction_soup<Point> t_junction_soup(const std::string& relative, int slabs, unsigned seed)
+{
+  const Mesh_data m = load(relative);
+  return soup_test::t_junction_soup(m.points, m.triangles, slabs, 1e-7 * diagonal(m.points) / std::sqrt(3.0), seed);
+}
+
+// --- index_triangles and the exact weld ----------------------------------------------------------
+
+void expect_same_index(const std::vector<std::array<Point, 3>>& soup)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::Index_report expected = ST::index_triangles(soup, points, triangles);
+  for_each_thread_count([&](int) {
+    std::vector<Point> p;
+    std::vector<Triangle> t;
+    const ST::Index_report r = ST::index_triangles<Parallel>(soup, p, t);
+    EXPECT_EQ(fields(r), fields(expected));
+    EXPECT_EQ(bits(p), bits(points));
+    EXPECT_EQ(t, triangles);
+  });
+}
+
+class ParallelRealMesh : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ParallelRealMesh, IndexTrianglesOfTheExplodedMesh)
+{
+  const Mesh_data m = load(GetParam());
+  auto soup = soup_test::explode(m.points, m.triangles);
+  expect_same_index(soup);
+  shuffle_triangles(soup, 5);
+  expect_same_index(soup);
+}
+
+TEST_P(ParallelRealMesh, AdjacencyTables)
+{
+  Mesh_data m = load(GetParam());
+  const ST::Adjacency_tables expected(m.triangles, m.points.size());
+  for_each_thread_count([&](int) { expect_same_tables(ST::Adjacency_tables(m.triangles, m.points.size(), Parallel()), expected); });
+  shuffle_triangles(m.triangles, 7);
+  const ST::Adjacency_tables shuffled(m.triangles, m.points.size());
+  for_each_thread_count([&](int) { expect_same_tables(ST::Adjacency_tables(m.triangles, m.points.size(), Parallel()), shuffled); });
+}
+
+TEST_P(ParallelRealMesh, OrientTriangleSoup)
+{
+  Mesh_data m = load(GetParam());
+  for(const bool shuffled : {false, true}) {
+    if(shuffled) shuffle_triangles(m.triangles, 13);
+    auto ep = m.points;
+    auto et = m.triangles;
+    const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et);
+    for_each_thread_count([&](int) {
+      auto p = m.points;
+      auto t = m.triangles;
+      const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t);
+      EXPECT_EQ(std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points),
+                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
+      EXPECT_EQ(bits(p), bits(ep));
+      EXPECT_EQ(t, et);
+    });
+  }
+}
+
+TEST_P(ParallelRealMesh, ReconstructTopologyOfTheJitteredExplodedMesh)
+{
+  const Mesh_data m = load(GetParam());
+  // Every corner its own point, moved by up to 1e-7 of the diagonal: the exact weld merges
+  // nothing and the epsilon weld does all the work.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::mt19937 rng(11);
+  const double d = diagonal(m.points), jitter = 1e-7 * d;
+  std::uniform_real_distribution<double> move(-jitter, jitter);
+  for(const Triangle& t : m.triangles) {
+    for(std::size_t k = 0; k < 3; ++k) {
+      const Point& p = m.points[t[k]];
+      points.emplace_back(p.x() + move(rng), p.y() + move(rng), p.z() + move(rng));
+    }
+    triangles.push_back({points.size() - 3, points.size() - 2, points.size() - 1});
+  }
+  for(const bool shuffled : {false, true}) {
+    SCOPED_TRACE(shuffled ? "shuffled" : "in file order");
+    if(shuffled) shuffle_triangles(triangles, 3);
+    Recording_visitor expected_calls;
+    auto ep = points;
+    auto et = triangles;
+    const ST::Reconstruction_report expected =
+      ST::reconstruct_topology(ep, et, CGAL::parameters::snapping_tolerance(1e-5 * d).visitor(std::ref(expected_calls)));
+    for_each_thread_count([&](int) {
+      Recording_visitor calls;
+      auto p = points;
+      auto t = triangles;
+      const ST::Reconstruction_report r = ST::reconstruct_topology<Parallel>(
+        p, t, CGAL::parameters::snapping_tolerance(1e-5 * d).visitor(std::ref(calls)));
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(bits(p), bits(ep));
+      EXPECT_EQ(t, et);
+      EXPECT_EQ(calls.calls, expected_calls.calls);
+    });
+  }
+}
+
+TEST_P(ParallelRealMesh, ReconstructTopologyIntoAFaceGraph)
+{
+  const Mesh_data m = load(GetParam());
+  const auto np = CGAL::parameters::snapping_tolerance(1e-4 * diagonal(m.points));
+  CGAL::Surface_mesh<Point> expected;
+  const ST::Reconstruction_report re = ST::reconstruct_topology(m.points, m.triangles, expected, np);
+  for_each_thread_count([&](int) {
+    CGAL::Surface_mesh<Point> mesh;
+    const ST::Reconstruction_report r = ST::reconstruct_topology<Parallel>(m.points, m.triangles, mesh, np);
+    EXPECT_EQ(fields(r), fields(re));
+    ASSERT_EQ(mesh.number_of_vertices(), expected.number_of_vertices());
+    ASSERT_EQ(mesh.number_of_faces(), expected.number_of_faces());
+    std::vector<Point> a(mesh.points().begin(), mesh.points().end()), b(expected.points().begin(), expected.points().end());
+    EXPECT_EQ(bits(a), bits(b));
+    std::size_t different = 0;
+    for(const auto f : faces(mesh)) {
+      auto h = halfedge(f, mesh), g = halfedge(f, expected);
+      for(int k = 0; k < 3; ++k, h = next(h, mesh), g = next(g, expected))
+        different += target(h, mesh) != target(g, expected);
+    }
+    EXPECT_EQ(different, 0u);
+  });
+}
+
+TEST_P(ParallelRealMesh, LoopSubdivisionAndLimitPoints)
+{
+  const Mesh_data m = load(GetParam());
+  auto ep = m.points;
+  auto et = m.triangles;
+  ST::Adjacency_tables expected_tables;
+  ST::loop_subdivision(ep, et, ST::parameters::output_adjacency_tables(&expected_tables, CGAL::parameters::number_of_iterations(2)));
+  // The limit points as bits, or the message of the exception (a refused subdivision matrix).
+  const auto limit_points = [&](auto tag) {
+    try {
+      return std::make_pair(bits(ST::loop_limit_points<decltype(tag)>(m.points, m.triangles)), std::string());
+    } catch(const ST::Invalid_input& e) {
+      return std::make_pair(std::vector<std::uint64_t>(), std::string(e.what()));
+    }
+  };
+  const auto limit_tangents = [&](auto tag) {
+    try {
+      std::vector<Point> as_points;
+      for(const auto& pair : ST::loop_limit_tangents<decltype(tag)>(m.points, m.triangles))
+        for(const auto& v : pair) as_points.push_back(CGAL::ORIGIN + v);
+      return std::make_pair(bits(as_points), std::string());
+    } catch(const ST::Invalid_input& e) {
+      return std::make_pair(std::vector<std::uint64_t>(), std::string(e.what()));
+    }
+  };
+  const auto expected_limit = limit_points(CGAL::Sequential_tag());
+  const auto expected_tangents = limit_tangents(CGAL::Sequential_tag());
+  for_each_thread_count([&](int) {
+    auto p = m.points;
+    auto t = m.triangles;
+    ST::Adjacency_tables tables;
+    ST::loop_subdivision<Parallel>(p, t, ST::parameters::output_adjacency_tables(&tables, CGAL::parameters::number_of_iterations(2)));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+    expect_same_tables(tables, expected_tables);
+    EXPECT_EQ(limit_points(Parallel()), expected_limit);
+    EXPECT_EQ(limit_tangents(Parallel()), expected_tangents);
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ParallelRealMesh, ::testing::ValuesIn(real_meshes));
+
+// --- the robustness soups ------------------------------------------------------------------------
+
+class ParallelTJunctionSoup : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ParallelTJunctionSoup, ReconstructSnapAndSplit)
+{
+  auto soup = t_junction_soup(GetParam(), 5, 17);
+  ASSERT_GT(soup.t_junctions, 10u);
+  const double eps = 1e-6 * diagonal(soup.points);
+  const auto np = CGAL::parameters::snapping_tolerance(eps);
+  for(const bool shuffled : {false, true}) {
+    SCOPED_TRACE(shuffled ? "shuffled" : "generated order");
+    if(shuffled) shuffle_triangles(soup.triangles, 23);
+    auto ep = soup.points;
+    auto et = soup.triangles;
+    Recording_visitor expected_calls;
+    const ST::Reconstruction_report expected =
+      ST::reconstruct_topology(ep, et, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(expected_calls)));
+    auto st = soup.triangles;
+    const ST::Snap_report expected_snap = ST::snap_vertices(soup.points, st, np);
+    auto tt = soup.triangles;
+    const ST::Split_report expected_split = ST::split_t_junctions(soup.points, tt, np);
+    for_each_thread_count([&](int) {
+      auto p = soup.points;
+      auto t = soup.triangles;
+      Recording_visitor calls;
+      const ST::Reconstruction_report r =
+        ST::reconstruct_topology<Parallel>(p, t, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(calls)));
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(bits(p), bits(ep));
+      EXPECT_EQ(t, et);
+      EXPECT_EQ(calls.calls, expected_calls.calls);
+
+      auto s = soup.triangles;
+      const ST::Snap_report snap = ST::snap_vertices<Parallel>(soup.points, s, np);
+      EXPECT_EQ(fields(snap), fields(expected_snap));
+      EXPECT_EQ(snap.ambiguous_sites, expected_snap.ambiguous_sites);
+      EXPECT_EQ(s, st);
+
+      auto u = soup.triangles;
+      const ST::Split_report split = ST::split_t_junctions<Parallel>(soup.points, u, np);
+      EXPECT_EQ(fields(split), fields(expected_split));
+      EXPECT_EQ(u, tt);
+    });
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ParallelTJunctionSoup,
+                         ::testing::Values("clean/elephant.off", "clean/fandisk.off.xz", "clean/ChineseDragon-10kv.off.xz"));
+
+TEST(ParallelRobustnessSoup, SubdividedTJunctionSoupOverManyBlocks)
+{
+  // Large enough for every parallel helper to cut many blocks.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  auto soup = soup_test::t_junction_soup(m.points, m.triangles, 8, 1e-7 * diagonal(m.points) / std::sqrt(3.0), 5);
+  const auto np = CGAL::parameters::snapping_tolerance(1e-6 * diagonal(soup.points));
+  auto ep = soup.points;
+  auto et = soup.triangles;
+  const ST::Reconstruction_report expected = ST::reconstruct_topology(ep, et, np);
+  const auto exploded = soup_test::explode(soup.points, soup.triangles);
+  expect_same_index(exploded);
+  for_each_thread_count([&](int) {
+    auto p = soup.points;
+    auto t = soup.triangles;
+    const ST::Reconstruction_report r = ST::reconstruct_topology<Parallel>(p, t, np);
+    EXPECT_EQ(fields(r), fields(expected));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+  });
+}
+
+TEST(ParallelRobustnessSoup, ExactKernelAndCollapsedTriangles)
+{
+  // Epeck: the tables and the bookkeeping run in parallel, the geometric steps sequentially.
+  auto soup = t_junction_soup("clean/fandisk.off.xz", 4, 9);
+  std::vector<Epeck::Point_3> points;
+  for(const Point& p : soup.points) points.emplace_back(p.x(), p.y(), p.z());
+  // some exact duplicates and a collapsed triangle
+  for(std::size_t i = 0; i + 7 < points.size(); i += 7) points[i + 1] = points[i];
+  const double eps = 1e-6 * diagonal(soup.points);
+  auto ep = points;
+  auto et = soup.triangles;
+  const ST::Reconstruction_report expected = ST::reconstruct_topology(ep, et, CGAL::parameters::snapping_tolerance(eps));
+  for_each_thread_count([&](int) {
+    auto p = points;
+    auto t = soup.triangles;
+    const ST::Reconstruction_report r = ST::reconstruct_topology<Parallel>(p, t, CGAL::parameters::snapping_tolerance(eps));
+    EXPECT_EQ(fields(r), fields(expected));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+  });
+}
+
+TEST(ParallelIndexTriangles, DuplicatesCollapsedTrianglesAndSignedZeros)
+{
+  std::mt19937 rng(1);
+  std::uniform_int_distribution<int> coordinate(-20, 20);
+  std::vector<std::array<Point, 3>> soup(200000);
+  for(auto& t : soup)
+    for(Point& p : t) p = Point(coordinate(rng) * 0.25, coordinate(rng) == 0 ? -0.0 : 0.0, coordinate(rng) % 5);
+  expect_same_index(soup);
+  // the error names the first bad corner, whatever the threads
+  soup[150000][2] = Point(std::nan(""), 0, 0);
+  soup[190000][1] = Point(0, HUGE_VAL, 0);
+  for_each_thread_count([&](int) {
+    std::vector<Point> p;
+    std::vector<Triangle> t;
+    try {
+      ST::index_triangles<Parallel>(soup, p, t);
+      ADD_FAILURE() << "no exception";
+    } catch(const ST::Invalid_input& e) {
+      EXPECT_EQ(std::string(e.what()), "triangle 150000, corner 2: non-finite coordinate");
+    }
+  });
+}
+
+TEST(ParallelSTL, BinaryDecode)
+{
+  // A binary STL made in memory from the subdivided elephant (many blocks), and the pig's file.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  std::string bytes(80, '\0');
+  const std::uint32_t n = static_cast<std::uint32_t>(m.triangles.size());
+  bytes.append(reinterpret_cast<const char*>(&n), 4);
+  for(const Triangle& t : m.triangles) {
+    float f[12] = {};
+    for(std::size_t k = 0; k < 3; ++k)
+      for(int c = 0; c < 3; ++c) f[3 + 3 * k + std::size_t(c)] = static_cast<float>(m.points[t[k]][c]);
+    bytes.append(reinterpret_cast<const char*>(f), sizeof f);
+    bytes.append(2, '\0');
+  }
+  for(const std::string& file : {bytes, ST::IO::read_file_contents(soup_test::data_file("cgal_repair/pig.stl.xz"))}) {
+    std::vector<std::array<Point, 3>> expected;
+    ST::IO::read_STL_triangles(file, expected);
+    for_each_thread_count([&](int) {
+      std::vector<std::array<Point, 3>> read;
+      ST::IO::read_STL_triangles<Parallel>(file, read);
+      ASSERT_EQ(read.size(), expected.size());
+      std::vector<Point> a, b;
+      for(std::size_t i = 0; i < read.size(); ++i)
+        for(std::size_t k = 0; k < 3; ++k) {
+          a.push_back(read[i][k]);
+          b.push_back(expected[i][k]);
+        }
+      EXPECT_EQ(bits(a), bits(b));
+    });
+  }
+}
+
+TEST(ParallelIndexTriangles, EmptyAndTinySoups)
+{
+  using Soup = std::vector<std::array<Point, 3>>;
+  expect_same_index(Soup());
+  expect_same_index(Soup(1, std::array<Point, 3>{Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)}));
+  expect_same_index(Soup(1, std::array<Point, 3>{Point(0, 0, 0), Point(0, 0, 0), Point(0, 1, 0)}));
+}
+
+} // namespace
