@@ -11,7 +11,8 @@
 # installs what is missing (Debian's chromium, `npm ci` in viewer/), configures BUILD_DIR
 # again (the viewer is inlined at configure time) and builds the soup_topology target in it.
 # When Chromium, Node.js or the viewer cannot be installed, the tests are skipped with a message
-# and the script exits 0. The screenshots are left in BUILD_DIR/browser_tests.
+# and the script exits 0, unless SOUP_TOPOLOGY_REQUIRE_BROWSER=1 (as run_tests.sh, so CI, sets
+# it): then a skip is a failure. The screenshots are left in BUILD_DIR/browser_tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD_DIR:-build}
@@ -20,6 +21,7 @@ work="$build/browser_tests"
 
 skip() {
   echo "browser tests SKIPPED: $*"
+  if [ "${SOUP_TOPOLOGY_REQUIRE_BROWSER:-0}" = 1 ]; then exit 1; fi
   exit 0
 }
 
@@ -64,6 +66,7 @@ if [ -f "$data/cad/ALSTOM_TEST4.off" ]; then
 else
   echo "== ALSTOM_TEST4 SKIPPED: $data/cad/ALSTOM_TEST4.off not found"
   skipped=$((skipped + 1))
+  [ "${SOUP_TOPOLOGY_REQUIRE_BROWSER:-0}" != 1 ] || failed=$((failed + 1))
 fi
 
 # About 1M triangles: the page shows a simplified mesh and must open within 10 s.

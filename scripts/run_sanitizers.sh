@@ -2,9 +2,16 @@
 # Builds the whole GoogleTest suite and the command-line tool with AddressSanitizer and
 # UndefinedBehaviorSanitizer (g++, -O1, assertions on) in a separate build folder and runs the
 # tests; any report (memory error, leak, undefined behaviour) fails. The examples and the
-# benchmarks are left out: they run the same code on the same data as the tests.
+# benchmarks are left out: they run the same code on the same data as the tests. So are, by
+# default, two test programs whose code runs under the sanitizers elsewhere: structures_tests
+# (the tables, graph views, octree and subdivision on trusted meshes, compared with brute force:
+# the pipeline tests and the fuzz_pipeline target run the same tables and octree under
+# AddressSanitizer on hostile input) and parallel_test (run under ThreadSanitizer by
+# run_thread_sanitizer.sh). Every program that reads files, runs the tool or repairs is built.
 #   ASAN_BUILD_DIR  build folder (default build-asan)
 #   ASAN_TESTS      a CTest regular expression to run a subset (default: every test)
+#   ASAN_PROGRAMS   the test programs built, separated by ';' (default:
+#                   input_tests;repair_tests;tool_tests); "all" builds every one
 #   JOBS            parallel jobs (default: nproc)
 #   ASAN_DEBUG_INFO debug information (default -g1: the line tables and function names that the
 #                   reports' stack traces print, not the variables; -g for a debugger session)
@@ -18,11 +25,14 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 # in a system header, absent from the Release build).
 flags="$flags -Wno-maybe-uninitialized"
 debug_info=${ASAN_DEBUG_INFO:--g1}
+programs=${ASAN_PROGRAMS:-input_tests;repair_tests;tool_tests}
+[ "$programs" = all ] && programs=""
 cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 $debug_info" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
       -DSOUP_TOPOLOGY_BUILD_TESTS=ON -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON \
-      -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF -DSOUP_TOPOLOGY_BUILD_FUZZERS=OFF > /dev/null
-# The tests (every test/*_test.cpp) and the tool they call, not the examples; from the test
+      -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF -DSOUP_TOPOLOGY_BUILD_FUZZERS=OFF \
+      -DSOUP_TOPOLOGY_TEST_PROGRAMS="$programs" > /dev/null
+# The test programs and the tool they call, not the examples; from the test
 # folder's Makefile, which builds them in parallel (cmake --build --target a b c builds one after
 # the other).
 make -C "$build/test" -j "$jobs"

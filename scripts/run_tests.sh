@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, builds everything in Release and runs the whole test suite
 # (unit tests, examples, the command-line tool), then checks that an installed copy of the
-# package is found by a consumer project through find_package(Soup_topology); then the tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer and short fuzz runs (SOUP_TOPOLOGY_HARDENING=0 skips
-# those two).
+# package is found by a consumer project through find_package(Soup_topology), the HTML report in
+# headless Chromium and the build without TBB; then the tests under AddressSanitizer +
+# UndefinedBehaviorSanitizer, the parallel code under ThreadSanitizer and short fuzz runs
+# (SOUP_TOPOLOGY_HARDENING=0 skips those three).
 #   BUILD_DIR     the Release build folder (default build)
 #   JOBS          parallel compilations and tests (default: nproc)
 #   FUZZ_SECONDS  seconds each fuzz target runs here (default 15: a check that every target still
@@ -24,6 +25,8 @@ step_start=$SECONDS
 step_done() { echo "== $1: $((SECONDS - step_start)) s"; step_start=$SECONDS; }
 # Every option that decides what is built is given explicitly, so that a build folder configured
 # by another script (run_demo.sh builds only the tool) cannot leave the tests out.
+# three.js for the HTML report's viewer (npm ci in viewer/), inlined when the build is configured.
+bash scripts/setup_viewer.sh
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_BUILD_TESTS=ON \
       -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF
 # The benchmarks are run on demand from a Release build (doc/Soup_topology/Performance.md); here
@@ -50,14 +53,19 @@ cmake --build "$build/consumer" -j "$jobs" > /dev/null
 "$build/consumer/consumer"
 step_done "install and consumer project"
 
-# Further checks, each a script of its own that fails on any error, followed by its step_done
-# line: the ThreadSanitizer build of the parallel code, the build without TBB, the browser test
-# of the HTML report (its packages are installed above).
+# The HTML report in a real browser (headless Chromium, software GL): a skip is a failure here.
+SOUP_TOPOLOGY_REQUIRE_BROWSER=1 BUILD_DIR="$build" bash scripts/run_browser_tests.sh
+step_done "browser tests of the HTML report"
+# The package without TBB: every function taking a ConcurrencyTag compiles and runs sequentially.
+bash scripts/check_without_tbb.sh
+step_done "build and determinism tests without TBB"
 
 # Hardening: the tests under the sanitizers, then the fuzz targets for FUZZ_SECONDS each.
 if [ "$hardening" != 0 ]; then
   bash scripts/run_sanitizers.sh
   step_done "sanitizer build and tests"
+  bash scripts/run_thread_sanitizer.sh
+  step_done "ThreadSanitizer build and determinism tests"
   FUZZ_SECONDS=${FUZZ_SECONDS:-15} bash scripts/run_fuzz.sh
   step_done "fuzz build and runs"
 fi

@@ -1,0 +1,269 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The pipeline on 1 thread and on all threads (issue 14): the wall time of every phase, and the
+// speedup, in one run. A plain program (not a Google Benchmark): each phase runs once per thread
+// count, after one untimed run that warms the allocator and the file-system cache.
+//
+// Inputs, made once per process from clean/bunny00.off.xz (75,408 triangles) of the shared data
+// folder, split 1-to-4 at the edge midpoints (soup_test::subdivide_midpoints):
+// - "4M exploded": split 3 times (4,826,112 triangles), every triangle with its own 3 corners (as
+//   an STL export gives): index_triangles + Adjacency_tables;
+// - "4M jittered": the same soup with every corner moved by up to 1e-6 x the bounding-box diagonal
+//   on each coordinate, welded with the tolerance 1e-5 x the diagonal: index_triangles then
+//   reconstruct_topology;
+// - "4M T-junction patches": soup_test::t_junction_soup (8 slabs, jitter 1e-7 x the diagonal) of
+//   the 3-times split mesh, reconstruct_topology with the tolerance 1e-6 x the diagonal;
+// - "Loop": 2 levels of loop_subdivision of the mesh split twice (1,206,528 triangles);
+// - "CLI repair": `soup_topology repair IN.stl -o OUT.stl --relative-tolerance 1e-5 --threads N`
+//   on the 4M jittered soup written as a binary STL (float coordinates), timed as a process.
+// Every parallel result is compared with the 1-thread result (points and triangles): a
+// difference is printed and makes the exit code 1.
+//
+// Run: parallel_benchmark [path of the soup_topology tool] (default: ../tools/soup_topology beside
+// this program); it needs about 4 GB of memory and writes two STL files to a temporary folder.
+
+#include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/index_triangles.h>
+#include <Soup_topology/loop_subdivision.h>
+#include <Soup_topology/reconstruct_topology.h>
+
+#include "../test/soup_generators.h"
+#include "../test/test_utilities.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace ST = Soup_topology;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Explicit_triangle = std::array<Point, 3>;
+using Parallel = CGAL::Parallel_if_available_tag;
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <class F>
+double timed(const F& f)
+{
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return seconds_since(start);
+}
+
+std::size_t all_threads()
+{
+#if defined(CGAL_LINKED_WITH_TBB)
+  return static_cast<std::size_t>(tbb::info::default_concurrency());
+#else
+  return 1;
+#endif
+}
+
+// Runs `f` with TBB limited to `threads`.
+template <class F>
+void with_threads(std::size_t threads, const F& f)
+{
+#if defined(CGAL_LINKED_WITH_TBB)
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+#endif
+  (void)threads;
+  f();
+}
+
+double diagonal(const std::vector<Point>& points)
+{
+  return ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+}
+
+void write_binary_STL(const std::string& file, const std::vector<Explicit_triangle>& soup)
+{
+  std::ofstream out(file, std::ios::binary);
+  char header[80] = {};
+  out.write(header, sizeof header);
+  const std::uint32_t n = static_cast<std::uint32_t>(soup.size());
+  out.write(reinterpret_cast<const char*>(&n), 4);
+  for(const Explicit_triangle& t : soup) {
+    float f[12] = {};
+    for(std::size_t k = 0; k < 3; ++k) {
+      f[3 + 3 * k] = static_cast<float>(t[k].x());
+      f[4 + 3 * k] = static_cast<float>(t[k].y());
+      f[5 + 3 * k] = static_cast<float>(t[k].z());
+    }
+    out.write(reinterpret_cast<const char*>(f), sizeof f);
+    const std::uint16_t attribute = 0;
+    out.write(reinterpret_cast<const char*>(&attribute), 2);
+  }
+  if(!out) throw std::runtime_error("cannot write " + file);
+}
+
+// One line of the table: a phase, its time on 1 thread and on all threads.
+struct Row
+{
+  std::string phase;
+  double one = 0, all = 0;
+};
+
+std::vector<Row> rows;
+bool identical = true;
+
+void print_row(const Row& r, std::size_t threads)
+{
+  const double speedup = r.one / r.all;
+  // Amdahl: speedup s on p threads gives the serial fraction f = (p / s - 1) / (p - 1).
+  const double p = static_cast<double>(threads);
+  const double serial = threads > 1 ? std::clamp((p / speedup - 1) / (p - 1), 0.0, 1.0) : 1.0;
+  auto amdahl = [&](double cores) { return 1 / (serial + (1 - serial) / cores); };
+  std::printf("%-44s %9.3f %9.3f %8.2fx %8.2f %8.1fx %8.1fx\n", r.phase.c_str(), r.one, r.all, speedup, serial,
+              amdahl(16), amdahl(64));
+  std::fflush(stdout);
+}
+
+// Runs `run_one` once untimed, then times it on 1 thread and `run_all` on all threads; `same()`
+// compares their results.
+void measure(const std::string& name, std::size_t threads, const std::function<void()>& run_one,
+             const std::function<void()>& run_all, const std::function<bool()>& same)
+{
+  run_one();
+  Row r{name, 0, 0};
+  with_threads(1, [&] { r.one = timed(run_one); });
+  with_threads(threads, [&] { r.all = timed(run_all); });
+  if(!same()) {
+    std::printf("%s: the parallel result differs from the 1-thread result\n", name.c_str());
+    identical = false;
+  }
+  rows.push_back(r);
+  print_row(r, threads);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const std::string tool = argc > 1 ? argv[1]
+                                    : (std::filesystem::path(argv[0]).parent_path() / ".." / "tools" / "soup_topology").string();
+  const std::size_t threads = all_threads();
+  std::printf("parallel_benchmark: %zu threads (TBB's default concurrency)\n", threads);
+
+  // The inputs.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("clean/bunny00.off.xz", points, triangles);
+  soup_test::subdivide_midpoints(points, triangles);
+  soup_test::subdivide_midpoints(points, triangles);
+  const std::vector<Point> loop_points = points;
+  const std::vector<Triangle> loop_triangles = triangles;
+  soup_test::subdivide_midpoints(points, triangles);
+  const double diag = diagonal(points);
+  std::vector<Explicit_triangle> exploded = soup_test::explode(points, triangles);
+  std::vector<Explicit_triangle> jittered = exploded;
+  {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> move(-1e-6 * diag, 1e-6 * diag);
+    for(Explicit_triangle& t : jittered)
+      for(Point& p : t) p = Point(p.x() + move(rng), p.y() + move(rng), p.z() + move(rng));
+  }
+  std::printf("inputs: %zu triangles (exploded, jittered), Loop input %zu triangles\n", exploded.size(),
+              loop_triangles.size());
+  std::printf("%-44s %9s %9s %9s %8s %9s %9s\n", "phase (wall seconds)", "1 thread", "all", "speedup", "serial",
+              "Amdahl16", "Amdahl64");
+
+  // 1. exact weld + tables of the exploded soup
+  {
+    std::vector<Point> p1, pn;
+    std::vector<Triangle> t1, tn;
+    measure("4M exploded: index_triangles", threads, [&] { ST::index_triangles<Parallel>(exploded, p1, t1); },
+            [&] { ST::index_triangles<Parallel>(exploded, pn, tn); }, [&] { return p1 == pn && t1 == tn; });
+    std::size_t b1 = 0, bn = 0;
+    measure("4M exploded: Adjacency_tables", threads,
+            [&] { b1 = ST::Adjacency_tables(t1, p1.size(), Parallel()).number_of_border_edges(); },
+            [&] { bn = ST::Adjacency_tables(t1, p1.size(), Parallel()).number_of_border_edges(); },
+            [&] { return b1 == bn; });
+  }
+  // 2. the jittered epsilon weld
+  {
+    std::vector<Point> p1, pn, q1, qn;
+    std::vector<Triangle> t1, tn, u1, un;
+    measure("4M jittered: index_triangles", threads, [&] { ST::index_triangles<Parallel>(jittered, p1, t1); },
+            [&] { ST::index_triangles<Parallel>(jittered, pn, tn); }, [&] { return p1 == pn && t1 == tn; });
+    const auto np = CGAL::parameters::snapping_tolerance(1e-5 * diag);
+    measure("4M jittered: reconstruct_topology", threads,
+            [&] { q1 = p1; u1 = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(q1, u1, np); },
+            [&] { qn = p1; un = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(qn, un, np); },
+            [&] { return q1 == qn && u1 == un; });
+  }
+  std::vector<Explicit_triangle>().swap(exploded);
+  // 3. the T-junction patch soup
+  {
+    const auto soup = soup_test::t_junction_soup(points, triangles, 8, 1e-7 * diag, 17);
+    const auto np = CGAL::parameters::snapping_tolerance(1e-6 * diag);
+    std::vector<Point> p1, pn;
+    std::vector<Triangle> t1, tn;
+    measure("4M T-junction patches: reconstruct_topology", threads,
+            [&] { p1 = soup.points; t1 = soup.triangles; ST::reconstruct_topology<Parallel>(p1, t1, np); },
+            [&] { pn = soup.points; tn = soup.triangles; ST::reconstruct_topology<Parallel>(pn, tn, np); },
+            [&] { return p1 == pn && t1 == tn; });
+  }
+  // 4. Loop subdivision
+  {
+    std::vector<Point> p1, pn;
+    std::vector<Triangle> t1, tn;
+    const auto np = CGAL::parameters::number_of_iterations(2);
+    measure("Loop: 2 levels of 1.2M triangles", threads,
+            [&] { p1 = loop_points; t1 = loop_triangles; ST::loop_subdivision<Parallel>(p1, t1, np); },
+            [&] { pn = loop_points; tn = loop_triangles; ST::loop_subdivision<Parallel>(pn, tn, np); },
+            [&] { return p1 == pn && t1 == tn; });
+  }
+  // 5. the command line, end to end
+  {
+    const std::string folder = soup_test::temporary_folder("parallel_benchmark");
+    const std::string in = folder + "/jittered.stl";
+    write_binary_STL(in, jittered);
+    std::vector<Explicit_triangle>().swap(jittered);
+    auto repair = [&](std::size_t n, const std::string& out) {
+      const std::string command = "'" + tool + "' repair '" + in + "' -o '" + out +
+                                  "' --relative-tolerance 1e-5 --threads " + std::to_string(n) + " > '" + out + ".log'";
+      if(std::system(command.c_str()) != 0) throw std::runtime_error("failed: " + command);
+    };
+    const std::string out1 = folder + "/out1.stl", outn = folder + "/outn.stl";
+    Row r{"4M jittered STL: soup_topology repair", 0, 0};
+    repair(1, out1);
+    r.one = timed([&] { repair(1, out1); });
+    r.all = timed([&] { repair(threads, outn); });
+    std::ifstream a(out1, std::ios::binary), b(outn, std::ios::binary);
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    if(sa != sb) {
+      std::printf("soup_topology repair: the files written on 1 and %zu threads differ\n", threads);
+      identical = false;
+    }
+    rows.push_back(r);
+    print_row(r, threads);
+    std::filesystem::remove_all(folder);
+  }
+  std::printf(identical ? "every parallel result is identical to the 1-thread result\n"
+                        : "SOME PARALLEL RESULTS DIFFER\n");
+  return identical ? EXIT_SUCCESS : EXIT_FAILURE;
+}
