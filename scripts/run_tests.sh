@@ -6,7 +6,7 @@
 # UndefinedBehaviorSanitizer and short fuzz runs (SOUP_TOPOLOGY_HARDENING=0 skips those two).
 #   BUILD_DIR     the Release build folder (default build)
 #   JOBS          parallel compilations and tests (default: nproc)
-#   FUZZ_SECONDS  seconds each fuzz target runs here (default 15: a check that every target still
+#   FUZZ_SECONDS  seconds each fuzz target runs here (default 10: a check that every target still
 #                 runs clean from its seeds; README.md "Hardening" has the long runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -66,6 +66,6 @@ if [ "$hardening" != 0 ]; then
   # scripts/run_thread_sanitizer.sh (the determinism tests under ThreadSanitizer) is not run
   # here: with Debian's uninstrumented libtbb it still reports, from time to time, TBB's own
   # hand-over of a split task's copy of the loop body as a race (see the script).
-  FUZZ_SECONDS=${FUZZ_SECONDS:-15} bash scripts/run_fuzz.sh
+  FUZZ_SECONDS=${FUZZ_SECONDS:-10} bash scripts/run_fuzz.sh
   step_done "fuzz build and runs"
 fi

@@ -199,7 +199,6 @@ class Worker_signal_mask : public tbb::task_scheduler_observer
 {
 public:
   Worker_signal_mask() { observe(true); }
-  ~Worker_signal_mask() override { observe(false); }
   void on_scheduler_entry(bool is_worker) override
   {
     if(!is_worker) return;
@@ -211,6 +210,16 @@ public:
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
   }
 };
+
+// The mask holds for the whole process: a worker may join until the process ends. The observer
+// is never destroyed, so it never leaves TBB's list while a thread still counts it as the last
+// observer it told (TBB then keeps its record alive, unreferenced, until exit, and the leak
+// checker of the sanitizer build reports it).
+void mask_signals_in_worker_threads()
+{
+  static Worker_signal_mask* const mask = new Worker_signal_mask;
+  (void)mask;
+}
 #endif
 
 // At most `threads` threads for the steps that run in parallel (0: TBB's default, all cores).
@@ -220,6 +229,7 @@ public:
   explicit Thread_limit(std::size_t threads)
   {
 #if defined(CGAL_LINKED_WITH_TBB)
+    mask_signals_in_worker_threads();
     if(threads > 0) limit_.emplace(tbb::global_control::max_allowed_parallelism, threads);
 #else
     (void)threads;
@@ -228,7 +238,6 @@ public:
 private:
 #if defined(CGAL_LINKED_WITH_TBB)
   std::optional<tbb::global_control> limit_;
-  Worker_signal_mask mask_;
 #endif
 };
 
