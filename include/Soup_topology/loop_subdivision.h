@@ -270,6 +270,74 @@ struct Loop_level
   }
 };
 
+/// Loop's two stencils on the points `in` of one level, with the kernel's constructions: both
+/// ways of computing a level (sequential and parallel) build their points here, so that they agree
+/// bit for bit.
+template <class GT>
+class Loop_stencils
+{
+public:
+  using FT = typename GT::FT;
+  using Point = typename GT::Point_3;
+  using Vector = typename GT::Vector_3;
+  using Index = Loop_level::Index;
+
+  Loop_stencils(const Loop_level& level, const std::vector<Point>& in, const GT& gt)
+    : level_(level), in_(in), to_vector_(gt.construct_vector_3_object()),
+      add_(gt.construct_sum_of_vectors_3_object()), scale_(gt.construct_scaled_vector_3_object()),
+      translate_(gt.construct_translated_point_3_object()),
+      origin_(gt.construct_point_3_object()(CGAL::ORIGIN))
+  {}
+
+  /// the position vector of vertex `v` of the level
+  Vector vec(Index v) const { return to_vector_(origin_, in_[v]); }
+  Vector add(const Vector& a, const Vector& b) const { return add_(a, b); }
+
+  /// the two end points of edge `e`, in the order of its first half-edge
+  void ends(Index e, Index& a, Index& b) const
+  {
+    const Index h = level_.half1[e];
+    const std::array<Index, 3>& tr = level_.triangles[h / 3];
+    a = tr[h % 3];
+    b = tr[(h % 3 + 1) % 3];
+  }
+
+  /// the point of edge `e`: the midpoint of a crease, `3/8 (a + b) + 1/8 (c + d)` elsewhere
+  Point edge_point(Index e) const
+  {
+    const Index h = level_.half1[e];
+    const std::array<Index, 3>& tr = level_.triangles[h / 3];
+    const Index k = h % 3;
+    const Vector ab = add_(vec(tr[k]), vec(tr[(k + 1) % 3]));
+    if(level_.is_crease(e)) return translate_(origin_, scale_(ab, FT(0.5)));
+    const Index h2 = level_.half2[e];
+    const Index c = tr[(k + 2) % 3], d = level_.triangles[h2 / 3][(h2 + 2) % 3];
+    return translate_(origin_, scale_(add_(scale_(ab, FT(3)), add_(vec(c), vec(d))), FT(0.125)));
+  }
+
+  /// the moved smooth vertex `v` of `valence` ring vertices summing to `ring`, weight `beta` each
+  Point smooth_vertex_point(Index v, const Vector& ring, std::size_t valence, double beta) const
+  {
+    const FT centre(1. - double(valence) * beta);
+    return translate_(origin_, add_(scale_(vec(v), centre), scale_(ring, FT(beta))));
+  }
+
+  /// the moved crease vertex `v` whose two crease neighbours sum to `ring`
+  Point crease_vertex_point(Index v, const Vector& ring) const
+  {
+    return translate_(origin_, add_(scale_(vec(v), FT(0.75)), scale_(ring, FT(0.125))));
+  }
+
+private:
+  const Loop_level& level_;
+  const std::vector<Point>& in_;
+  decltype(std::declval<const GT&>().construct_vector_3_object()) to_vector_;
+  decltype(std::declval<const GT&>().construct_sum_of_vectors_3_object()) add_;
+  decltype(std::declval<const GT&>().construct_scaled_vector_3_object()) scale_;
+  decltype(std::declval<const GT&>().construct_translated_point_3_object()) translate_;
+  Point origin_;
+};
+
 /// One level of Loop's rules computed in parallel: the edge points each on their own, the ring
 /// sums per vertex over its edges in increasing edge order (the order of the sequential sums, so
 /// the floating-point results are the same bit for bit).
@@ -277,25 +345,11 @@ template <class ConcurrencyTag, class GT>
 void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
                              std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
 {
-  using FT = typename GT::FT;
-  using Point = typename GT::Point_3;
   using Vector = typename GT::Vector_3;
   using Index = Loop_level::Index;
-  auto to_vector = gt.construct_vector_3_object();
-  auto add = gt.construct_sum_of_vectors_3_object();
-  auto scale = gt.construct_scaled_vector_3_object();
-  auto translate = gt.construct_translated_point_3_object();
-  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
-  auto vec = [&](Index v) { return to_vector(origin, in[v]); };
-
+  const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
   out.resize(n + E);
-  auto ends_of = [&](Index e, Index& a, Index& b) {
-    const Index h = level.half1[e];
-    const std::array<Index, 3>& tr = level.triangles[h / 3];
-    a = tr[h % 3];
-    b = tr[(h % 3 + 1) % 3];
-  };
   // the edges of every vertex, in increasing order
   std::vector<std::size_t> first_edge(n + 1, 0);
   std::vector<Index> edges_of(2 * E);
@@ -304,7 +358,7 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
     for_each_index<ConcurrencyTag>(n, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
     for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
       Index a, b;
-      ends_of(static_cast<Index>(e), a, b);
+      stencils.ends(static_cast<Index>(e), a, b);
       cursor[a].fetch_add(1, std::memory_order_relaxed);
       cursor[b].fetch_add(1, std::memory_order_relaxed);
     });
@@ -314,27 +368,12 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
     }
     for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
       Index a, b;
-      ends_of(static_cast<Index>(e), a, b);
+      stencils.ends(static_cast<Index>(e), a, b);
       edges_of[first_edge[a] + cursor[a].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
       edges_of[first_edge[b] + cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
     });
   }
-  const FT three(3), eighth(0.125), half(0.5), three_quarters(0.75);
-  for_each_index<ConcurrencyTag>(E, [&](std::size_t i) {
-    const Index e = static_cast<Index>(i);
-    const Index h = level.half1[e];
-    const std::array<Index, 3>& tr = level.triangles[h / 3];
-    const Index k = h % 3;
-    const Index a = tr[k], b = tr[(k + 1) % 3];
-    const Vector va = vec(a), vb = vec(b);
-    if(level.is_crease(e)) {
-      out[n + e] = translate(origin, scale(add(va, vb), half));
-    } else {
-      const Index h2 = level.half2[e];
-      const Index c = tr[(k + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
-      out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
-    }
-  });
+  for_each_index<ConcurrencyTag>(E, [&](std::size_t e) { out[n + e] = stencils.edge_point(static_cast<Index>(e)); });
   for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
     const Index v = static_cast<Index>(i);
     const Loop_vertex_kind kind = level.kind[v];
@@ -347,18 +386,12 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
       const Index e = edges_of[j];
       if(level.is_crease(e) != (kind == Loop_vertex_kind::CREASE)) continue;
       Index a, b;
-      ends_of(e, a, b);
-      sum = add(sum, vec(a == v ? b : a));
+      stencils.ends(e, a, b);
+      sum = stencils.add(sum, stencils.vec(a == v ? b : a));
       ++valence;
     }
-    if(kind == Loop_vertex_kind::SMOOTH) {
-      const double beta_k = loop_beta_value(choice, valence);
-      const FT beta(beta_k);
-      const FT centre(1. - double(valence) * beta_k);
-      out[v] = translate(origin, add(scale(vec(v), centre), scale(sum, beta)));
-    } else {
-      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(sum, eighth)));
-    }
+    out[v] = kind == Loop_vertex_kind::SMOOTH ? stencils.smooth_vertex_point(v, sum, valence, loop_beta_value(choice, valence))
+                                              : stencils.crease_vertex_point(v, sum);
   });
 }
 
@@ -373,43 +406,23 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
     loop_smooth_in_parallel<ConcurrencyTag>(level, in, out, choice, gt);
     return;
   }
-  using FT = typename GT::FT;
-  using Point = typename GT::Point_3;
   using Vector = typename GT::Vector_3;
   using Index = Loop_level::Index;
-  auto to_vector = gt.construct_vector_3_object();
-  auto add = gt.construct_sum_of_vectors_3_object();
-  auto scale = gt.construct_scaled_vector_3_object();
-  auto translate = gt.construct_translated_point_3_object();
-  const Point origin = gt.construct_point_3_object()(CGAL::ORIGIN);
-  auto vec = [&](Index v) { return to_vector(origin, in[v]); };
-
+  const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
   out.resize(n + E);
   // the sum of the ring of every vertex and its valence, side by side (one cache line per update)
   struct Ring { Vector sum; Index valence; };
   std::vector<Ring> ring(n, Ring{Vector(CGAL::NULL_VECTOR), 0});
-  const FT three(3), eighth(0.125), half(0.5);
   for(Index e = 0; e < E; ++e) {
-    const Index h = level.half1[e];
-    const std::array<Index, 3>& tr = level.triangles[h / 3];
-    const Index i = h % 3;
-    const Index a = tr[i], b = tr[(i + 1) % 3];
-    const Vector va = vec(a), vb = vec(b);
-    if(level.is_crease(e)) {
-      out[n + e] = translate(origin, scale(add(va, vb), half));
-      if(level.kind[a] == Loop_vertex_kind::CREASE) ring[a].sum = add(ring[a].sum, vb);
-      if(level.kind[b] == Loop_vertex_kind::CREASE) ring[b].sum = add(ring[b].sum, va);
-    } else {
-      const Index h2 = level.half2[e];
-      const Index c = tr[(i + 2) % 3], d = level.triangles[h2 / 3][(h2 + 2) % 3];
-      out[n + e] = translate(origin, scale(add(scale(add(va, vb), three), add(vec(c), vec(d))), eighth));
-      if(level.kind[a] == Loop_vertex_kind::SMOOTH) { ring[a].sum = add(ring[a].sum, vb); ++ring[a].valence; }
-      if(level.kind[b] == Loop_vertex_kind::SMOOTH) { ring[b].sum = add(ring[b].sum, va); ++ring[b].valence; }
-    }
+    out[n + e] = stencils.edge_point(e);
+    Index a, b;
+    stencils.ends(e, a, b);
+    const Loop_vertex_kind kind_of_edge = level.is_crease(e) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH;
+    if(level.kind[a] == kind_of_edge) { ring[a].sum = stencils.add(ring[a].sum, stencils.vec(b)); ++ring[a].valence; }
+    if(level.kind[b] == kind_of_edge) { ring[b].sum = stencils.add(ring[b].sum, stencils.vec(a)); ++ring[b].valence; }
   }
   std::vector<double> betas;
-  const FT three_quarters(0.75);
   for(Index v = 0; v < n; ++v) {
     switch(level.kind[v]) {
     case Loop_vertex_kind::SMOOTH: {
@@ -419,13 +432,11 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
         betas.resize(k + 1);
         for(std::size_t j = old; j <= k; ++j) betas[j] = loop_beta_value(choice, j);
       }
-      const FT beta(betas[k]);
-      const FT centre(1. - double(k) * betas[k]);
-      out[v] = translate(origin, add(scale(vec(v), centre), scale(ring[v].sum, beta)));
+      out[v] = stencils.smooth_vertex_point(v, ring[v].sum, k, betas[k]);
       break;
     }
     case Loop_vertex_kind::CREASE:
-      out[v] = translate(origin, add(scale(vec(v), three_quarters), scale(ring[v].sum, eighth)));
+      out[v] = stencils.crease_vertex_point(v, ring[v].sum);
       break;
     default:
       out[v] = in[v];
