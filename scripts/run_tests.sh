@@ -3,7 +3,8 @@
 # (unit tests, examples, the command-line tool), then checks that an installed copy of the
 # package is found by a consumer project through find_package(Soup_topology), the HTML report in
 # headless Chromium and the build without TBB; then the tests under AddressSanitizer +
-# UndefinedBehaviorSanitizer and short fuzz runs (SOUP_TOPOLOGY_HARDENING=0 skips those two).
+# UndefinedBehaviorSanitizer, the determinism tests under ThreadSanitizer and short fuzz runs
+# (SOUP_TOPOLOGY_HARDENING=0 skips those three).
 #   BUILD_DIR     the Release build folder (default build)
 #   JOBS          parallel compilations and tests (default: nproc)
 #   FUZZ_SECONDS  seconds each fuzz target runs here (default 10: a check that every target still
@@ -63,9 +64,8 @@ step_done "build and determinism tests without TBB"
 if [ "$hardening" != 0 ]; then
   bash scripts/run_sanitizers.sh
   step_done "sanitizer build and tests"
-  # scripts/run_thread_sanitizer.sh (the determinism tests under ThreadSanitizer) is not run
-  # here: with Debian's uninstrumented libtbb it still reports, from time to time, TBB's own
-  # hand-over of a split task's copy of the loop body as a race (see the script).
+  bash scripts/run_thread_sanitizer.sh
+  step_done "determinism tests under ThreadSanitizer"
   FUZZ_SECONDS=${FUZZ_SECONDS:-10} bash scripts/run_fuzz.sh
   step_done "fuzz build and runs"
 fi

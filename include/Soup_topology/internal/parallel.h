@@ -12,14 +12,17 @@
 #include <CGAL/tags.h>
 
 #if defined(CGAL_LINKED_WITH_TBB)
+#if defined(__SANITIZE_THREAD__)
+#include <tbb/global_control.h>
+
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#else
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
-#if defined(__SANITIZE_THREAD__)
-#include <sanitizer/tsan_interface.h>
-// ThreadSanitizer's runtime: the reads between these calls are not checked.
-extern "C" void AnnotateIgnoreReadsBegin(const char* file, int line);
-extern "C" void AnnotateIgnoreReadsEnd(const char* file, int line);
 #endif
 #endif
 
@@ -57,6 +60,42 @@ inline std::size_t number_of_blocks(std::size_t n, std::size_t block_size = defa
   return (n + block_size - 1) / block_size;
 }
 
+#if defined(CGAL_LINKED_WITH_TBB) && defined(__SANITIZE_THREAD__)
+/// Under ThreadSanitizer, `for_each_block()` runs its blocks on threads of the standard library,
+/// as many as TBB would use (its `max_allowed_parallelism`), each taking the next block not yet
+/// taken. TBB hands its tasks, and the copies of a loop body it makes when it splits a range,
+/// over inside its library, which Debian ships uninstrumented: the sanitizer sees no
+/// synchronisation there and reports the hand-over as a race. Here every start and end of a
+/// thread is seen, so a report is a race of the package's own code. The blocks are the same, and
+/// any two of them may run at the same time, as under TBB. The exception of the lowest block
+/// that threw is rethrown once every thread has ended.
+template <class Run>
+void run_blocks_on_standard_threads(std::size_t blocks, const Run& run)
+{
+  const std::size_t threads =
+    std::min(blocks, std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::size_t failed_block = blocks;
+  std::exception_ptr failure;
+  auto work = [&] {
+    for(std::size_t b = next.fetch_add(1); b < blocks; b = next.fetch_add(1)) {
+      try {
+        run(b);
+      } catch(...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if(b < failed_block) { failed_block = b; failure = std::current_exception(); }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for(std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for(std::thread& t : pool) t.join();
+  if(failure) std::rethrow_exception(failure);
+}
+#endif
+
 /// calls `f(block, begin, end)` for every block `[begin, end)` of `block_size` elements of
 /// `[0, n)` (the last one shorter), in parallel when `ConcurrencyTag` asks for it. The blocks do
 /// not depend on the number of threads.
@@ -69,30 +108,14 @@ void for_each_block(std::size_t n, std::size_t block_size, const F& f)
   if constexpr(runs_in_parallel<ConcurrencyTag>()) {
     if(blocks > 1) {
 #if defined(__SANITIZE_THREAD__)
-      // TBB hands its tasks over inside its (uninstrumented) library: ThreadSanitizer is told
-      // that the blocks start after the call and end before its return, as TBB guarantees.
-      char started = 0, finished = 0;
-      __tsan_release(&started);
-#endif
+      run_blocks_on_standard_threads(blocks, run);
+#else
       tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, blocks, 1),
         [&](const tbb::blocked_range<std::size_t>& r) {
-#if defined(__SANITIZE_THREAD__)
-          __tsan_acquire(&started);
-          // The range is TBB's object, written by the thread that split it and handed over
-          // inside the library: its two reads are not checked, the blocks' work is.
-          AnnotateIgnoreReadsBegin(__FILE__, __LINE__);
-          const std::size_t first = r.begin(), last = r.end();
-          AnnotateIgnoreReadsEnd(__FILE__, __LINE__);
-          for(std::size_t b = first; b != last; ++b) run(b);
-          __tsan_release(&finished);
-#else
           for(std::size_t b = r.begin(); b != r.end(); ++b) run(b);
-#endif
         },
         tbb::simple_partitioner());
-#if defined(__SANITIZE_THREAD__)
-      __tsan_acquire(&finished);
 #endif
       return;
     }
