@@ -22,6 +22,7 @@
 #include <benchmark/benchmark.h>
 
 #include "../test/test_utilities.h"
+#include "benchmark_utilities.h"
 
 #include <algorithm>
 #include <array>
@@ -43,6 +44,8 @@ using Point = K::Point_3;
 using FT = K::FT;
 
 namespace {
+
+using soup_benchmark::diagonal;
 
 constexpr std::size_t number_of_points = 1000000;
 constexpr std::size_t number_of_queries = 20000;
@@ -80,13 +83,6 @@ void subdivide(std::vector<Point>& points, std::vector<std::array<std::size_t, 3
     out.push_back({m01, m12, m20});
   }
   triangles.swap(out);
-}
-
-double diagonal(const std::vector<Point>& pts)
-{
-  const CGAL::Bbox_3 b = CGAL::bbox_3(pts.begin(), pts.end());
-  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) +
-                   CGAL::square(b.zmax() - b.zmin()));
 }
 
 void make_queries(Data_set& d, std::mt19937& gen)

@@ -38,6 +38,7 @@
 
 #include "../test/soup_generators.h"
 #include "../test/test_utilities.h"
+#include "benchmark_utilities.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/STL.h>
@@ -71,35 +72,9 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-// CPU time of the calling thread, in milliseconds (for the per-phase counters).
-double thread_cpu_ms()
-{
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
-
-void write_binary_STL(const std::string& file, const std::vector<Explicit_triangle>& soup)
-{
-  std::ofstream out(file, std::ios::binary);
-  char header[80] = {};
-  std::strncpy(header, "exploded bunny00, subdivided twice", sizeof header - 1);
-  out.write(header, sizeof header);
-  const std::uint32_t n = static_cast<std::uint32_t>(soup.size());
-  out.write(reinterpret_cast<const char*>(&n), 4);
-  for(const Explicit_triangle& t : soup) {
-    float f[12] = {};
-    for(int k = 0; k < 3; ++k) {
-      f[3 + 3 * k] = static_cast<float>(t[k].x());
-      f[4 + 3 * k] = static_cast<float>(t[k].y());
-      f[5 + 3 * k] = static_cast<float>(t[k].z());
-    }
-    out.write(reinterpret_cast<const char*>(f), sizeof f);
-    const std::uint16_t attribute = 0;
-    out.write(reinterpret_cast<const char*>(&attribute), 2);
-  }
-  if(!out) throw std::runtime_error("cannot write " + file);
-}
+using soup_benchmark::thread_cpu_ms;
+using soup_benchmark::peak_resident_bytes;
+using soup_benchmark::write_binary_STL;
 
 struct Input
 {
@@ -111,14 +86,6 @@ struct Input
 };
 
 enum class Order { mesh, shuffled };
-
-// The peak resident memory of the process so far, in bytes (getrusage).
-double peak_resident_bytes()
-{
-  rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return 1024.0 * static_cast<double>(usage.ru_maxrss);
-}
 
 const Input& input()
 {
@@ -138,8 +105,8 @@ const Input& input()
     const std::string folder = soup_test::temporary_folder("index_triangles_benchmark");
     r.stl = folder + "/bunny_exploded.stl";
     r.shuffled_stl = folder + "/bunny_exploded_shuffled.stl";
-    write_binary_STL(r.stl, r.soup);
-    write_binary_STL(r.shuffled_stl, r.shuffled);
+    write_binary_STL(r.stl, r.soup, "exploded bunny00, subdivided twice");
+    write_binary_STL(r.shuffled_stl, r.shuffled, "exploded bunny00, subdivided twice");
     r.stl_bytes = std::filesystem::file_size(r.stl);
     return r;
   }();

@@ -30,6 +30,7 @@
 
 #include "../test/soup_generators.h"
 #include "../test/test_utilities.h"
+#include "benchmark_utilities.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -53,6 +54,9 @@
 #include <vector>
 
 namespace {
+
+using soup_benchmark::diagonal;
+using soup_benchmark::write_binary_STL;
 
 namespace ST = Soup_topology;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -92,32 +96,6 @@ void with_threads(std::size_t threads, const F& f)
 #endif
   (void)threads;
   f();
-}
-
-double diagonal(const std::vector<Point>& points)
-{
-  return ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
-}
-
-void write_binary_STL(const std::string& file, const std::vector<Explicit_triangle>& soup)
-{
-  std::ofstream out(file, std::ios::binary);
-  char header[80] = {};
-  out.write(header, sizeof header);
-  const std::uint32_t n = static_cast<std::uint32_t>(soup.size());
-  out.write(reinterpret_cast<const char*>(&n), 4);
-  for(const Explicit_triangle& t : soup) {
-    float f[12] = {};
-    for(std::size_t k = 0; k < 3; ++k) {
-      f[3 + 3 * k] = static_cast<float>(t[k].x());
-      f[4 + 3 * k] = static_cast<float>(t[k].y());
-      f[5 + 3 * k] = static_cast<float>(t[k].z());
-    }
-    out.write(reinterpret_cast<const char*>(f), sizeof f);
-    const std::uint16_t attribute = 0;
-    out.write(reinterpret_cast<const char*>(&attribute), 2);
-  }
-  if(!out) throw std::runtime_error("cannot write " + file);
 }
 
 // One line of the table: a phase, its time on 1 thread and on all threads.

@@ -33,6 +33,7 @@
 
 #include "../test/soup_generators.h"
 #include "../test/test_utilities.h"
+#include "benchmark_utilities.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
@@ -67,20 +68,10 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-double thread_cpu_ms()
-{
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
-
-double diagonal(const std::vector<Point>& points)
-{
-  CGAL::Bbox_3 box;
-  for(const Point& p : points) box += p.bbox();
-  const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
+using soup_benchmark::thread_cpu_ms;
+using soup_benchmark::peak_resident_bytes;
+using soup_benchmark::diagonal;
+using soup_benchmark::write_binary_STL;
 
 enum class Size { one_million, three_hundred_thousand };
 enum class Jitter { exact, jittered };
@@ -230,14 +221,6 @@ void BM_CGAL_pipeline(benchmark::State& state, Size size, Jitter jitter)
   state.counters["faces"] = static_cast<double>(faces);
 }
 
-// The peak resident memory of the process so far, in bytes (getrusage).
-double peak_resident_bytes()
-{
-  rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return 1024.0 * static_cast<double>(usage.ru_maxrss);
-}
-
 // The exploded soup of the command-line path: clean/bunny00.off split 1-to-4 twice (1,206,528
 // triangles), every triangle with its own corners, every corner jittered by up to 1e-6 x the
 // diagonal (float coordinates), written as a binary STL in mesh order and shuffled. The
@@ -248,23 +231,6 @@ struct STL_input
   std::size_t triangles = 0;
   double tolerance = 0;
 };
-
-void write_binary_STL(const std::string& file, const std::vector<std::array<Point, 3>>& soup)
-{
-  std::string bytes(80, ' ');
-  const std::uint32_t n = static_cast<std::uint32_t>(soup.size());
-  bytes.append(reinterpret_cast<const char*>(&n), 4);
-  for(const auto& t : soup) {
-    float f[12] = {};
-    for(std::size_t k = 0; k < 3; ++k)
-      for(int d = 0; d < 3; ++d) f[3 + 3 * k + static_cast<std::size_t>(d)] = static_cast<float>(t[k][d]);
-    bytes.append(reinterpret_cast<const char*>(f), sizeof f);
-    bytes.append(2, '\0');
-  }
-  std::ofstream out(file, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if(!out) throw std::runtime_error("cannot write " + file);
-}
 
 const STL_input& stl_input()
 {

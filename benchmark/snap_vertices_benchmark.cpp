@@ -32,6 +32,7 @@
 
 #include "../test/soup_generators.h"
 #include "../test/test_utilities.h"
+#include "benchmark_utilities.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/internal/Snapping/snap.h>
@@ -62,20 +63,8 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-double thread_cpu_ms()
-{
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
-}
-
-double diagonal(const std::vector<Point>& points)
-{
-  CGAL::Bbox_3 box;
-  for(const Point& p : points) box += p.bbox();
-  const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
+using soup_benchmark::thread_cpu_ms;
+using soup_benchmark::diagonal;
 
 struct Soups
 {
