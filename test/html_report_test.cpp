@@ -375,6 +375,44 @@ TEST(HtmlReportSites, SamePositionsForAShuffledSoup)
   }
 }
 
+// A split visitor that keeps every call, in order.
+struct Split_calls : ST::Default_split_visitor
+{
+  std::vector<std::array<std::size_t, 4>> splits, refusals, ambiguous;
+  void on_split(std::size_t v, std::size_t a, std::size_t b) { splits.push_back({v, a, b, 0}); }
+  void on_split_refusal(std::size_t v, std::size_t a, std::size_t b, ST::Split_refusal_reason reason)
+  { refusals.push_back({v, a, b, static_cast<std::size_t>(reason)}); }
+  void on_ambiguous_t_junction(std::size_t v, std::size_t a, std::size_t b) { ambiguous.push_back({v, a, b, 0}); }
+};
+
+template <class ConcurrencyTag>
+Split_calls split_calls(ST::Split_report& report)
+{
+  Site_soup s = soup_with_every_site_kind();
+  Split_calls calls;
+  report = ST::split_t_junctions<ConcurrencyTag>(s.points, s.triangles,
+                                                 CGAL::parameters::snapping_tolerance(0.1).visitor(std::ref(calls)));
+  return calls;
+}
+
+TEST(HtmlReportSites, SplitVisitorIsToldEveryEventInTheSameOrderOnAnyThreads)
+{
+  ST::Split_report report, parallel_report;
+  const Split_calls calls = split_calls<CGAL::Sequential_tag>(report);
+  EXPECT_EQ(calls.splits.size(), report.split_triangles);
+  EXPECT_EQ(calls.refusals.size(), report.refused_overlap + report.refused_degenerate + report.refused_flip);
+  EXPECT_EQ(calls.ambiguous.size(), report.ambiguous);
+  ASSERT_EQ(calls.splits.size(), 1u);
+  const Site_soup s = soup_with_every_site_kind();
+  EXPECT_EQ(s.points[calls.splits[0][0]], Point(11, 0, 0));
+  ASSERT_EQ(calls.refusals.size(), 2u);
+  for(const auto& r : calls.refusals) EXPECT_EQ(r[3], static_cast<std::size_t>(ST::Split_refusal_reason::OVERLAP));
+  const Split_calls parallel_calls = split_calls<CGAL::Parallel_if_available_tag>(parallel_report);
+  EXPECT_EQ(parallel_calls.splits, calls.splits);
+  EXPECT_EQ(parallel_calls.refusals, calls.refusals);
+  EXPECT_EQ(parallel_calls.ambiguous, calls.ambiguous);
+}
+
 TEST(HtmlReportSites, RefusesAnIndexBeyondThePoints)
 {
   ST::IO::Html_report_site_recorder recorder;

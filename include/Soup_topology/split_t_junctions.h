@@ -53,8 +53,8 @@ enum class Split_refusal_reason
 /// `split_t_junctions()`. A user visitor provides the same three member functions (deriving from
 /// this class gives the ones it does not need). Every call names a vertex and the border edge
 /// `[a,b]` it was found near, by their indices in `points`; the vertex lies within the tolerance
-/// of that edge, so its point locates the event. The calls follow the order of the border edges
-/// (on any number of threads); each adds one to the `Split_report` count named below.
+/// of that edge, so its point locates the event. The calls come in the same order on any number of
+/// threads; each adds one to the `Split_report` count named below.
 struct Default_split_visitor
 {
   /// the triangle along the border edge `[a,b]` is split at `vertex` (`Split_report::split_triangles`).
