@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // Tests of <Soup_topology/IO/write_html_report.h>: the structure of the page, the embedded
-// report JSON, the absence of addresses outside the license text, the holes and the display
-// simplification of large soups.
+// report JSON, the absence of addresses outside the license text, the holes, the display
+// simplification of large soups and the marker positions recorded during a repair.
 
 #include <Soup_topology/IO/write_html_report.h>
 
@@ -12,9 +12,13 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -220,6 +224,202 @@ TEST(HtmlReport, RefusesAnIndexOutOfRange)
   std::vector<Triangle> triangles{{0, 1, 3}};
   std::ostringstream out;
   EXPECT_THROW(ST::IO::write_html_report(out, points, triangles, ST::IO::Html_report_content()), ST::Invalid_input);
+}
+
+// A soup with one site of each marker kind at tolerance 0.1 under Small_features::REFUSE, the
+// pieces 10 apart along x:
+//   - x = 0: two triangles whose shared edge is open by 0.045 at each end (two welds);
+//   - x = 10: a triangle whose border edge [(10,0), (12,0)] has a vertex of two others at (11,0)
+//     (one T-junction split);
+//   - x = 20: a triangle with an edge of length 0.05 (a refused weld and an ambiguous site);
+//   - x = 30: a triangle over [(30,0), (32,0)] and a second one folded over it, whose border edge
+//     runs 0.02 above that edge (two splits refused for the overlap).
+struct Site_soup
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::size_t add(double x, double y) { points.emplace_back(x, y, 0.0); return points.size() - 1; }
+};
+
+Site_soup soup_with_every_site_kind()
+{
+  Site_soup s;
+  const std::size_t p0 = s.add(0, 0), p1 = s.add(1, 0), p2 = s.add(0, 1);
+  const std::size_t q0 = s.add(1.04, 0.02), r = s.add(1, 1), q2 = s.add(0.02, 1.04);
+  s.triangles.push_back({p0, p1, p2});
+  s.triangles.push_back({q0, r, q2});
+  const std::size_t a = s.add(10, 0), b = s.add(12, 0), apex = s.add(11, -1), c = s.add(11, 0);
+  const std::size_t u1 = s.add(10.5, 1), u2 = s.add(11.5, 1);
+  s.triangles.push_back({b, a, apex});
+  s.triangles.push_back({a, c, u1});
+  s.triangles.push_back({c, b, u2});
+  s.triangles.push_back({c, u2, u1});
+  s.triangles.push_back({s.add(20, 0), s.add(20.05, 0), s.add(20, 1)});
+  s.triangles.push_back({s.add(30, 0), s.add(32, 0), s.add(31, 1)});
+  s.triangles.push_back({s.add(31, 0.02), s.add(31.5, 0.02), s.add(31.3, 0.5)});
+  return s;
+}
+
+// Repairs `s` at tolerance 0.1 (refusing small features) and returns the page content with the
+// positions recorded.
+ST::IO::Html_report_content repaired_content(Site_soup s, ST::Reconstruction_report& report)
+{
+  const std::vector<Point> input = s.points;
+  ST::IO::Html_report_site_recorder recorder;
+  report = ST::reconstruct_topology(s.points, s.triangles,
+                                    ST::parameters::small_features(ST::Small_features::REFUSE,
+                                                                   CGAL::parameters::snapping_tolerance(0.1)
+                                                                     .visitor(std::ref(recorder))));
+  ST::IO::Html_report_content content = ST::IO::html_report_content(report);
+  ST::IO::add_site_positions(content, recorder, input);
+  return content;
+}
+
+double distance(const std::array<double, 3>& p, const Point& q)
+{
+  return std::sqrt(CGAL::to_double(CGAL::squared_distance(Point(p[0], p[1], p[2]), q)));
+}
+
+// Every position lies within `tolerance` of one of `places`, and every place has a position.
+void expect_at(const ST::IO::Html_report_sites& sites, const std::vector<Point>& places, double tolerance,
+               const char* kind)
+{
+  EXPECT_EQ(sites.positions.size(), places.size()) << kind;
+  for(const auto& p : sites.positions) {
+    double nearest = 1e30;
+    for(const Point& q : places) nearest = std::min(nearest, distance(p, q));
+    EXPECT_LE(nearest, tolerance) << kind << " at " << p[0] << ' ' << p[1] << ' ' << p[2];
+  }
+  for(const Point& q : places) {
+    double nearest = 1e30;
+    for(const auto& p : sites.positions) nearest = std::min(nearest, distance(p, q));
+    EXPECT_LE(nearest, tolerance) << kind << ": nothing near " << q;
+  }
+}
+
+TEST(HtmlReportSites, PositionsOfEveryKindWhereTheRepairActed)
+{
+  ST::Reconstruction_report report;
+  const ST::IO::Html_report_content c = repaired_content(soup_with_every_site_kind(), report);
+  const double eps = 0.1;
+  expect_at(c.welded_vertices, {Point(1, 0, 0), Point(0, 1, 0)}, eps, "welded vertices");
+  expect_at(c.t_junction_splits, {Point(11, 0, 0)}, eps, "T-junction splits");
+  expect_at(c.refused_welds, {Point(20.025, 0, 0)}, eps, "refused welds");
+  expect_at(c.refused_splits, {Point(31, 0, 0), Point(31.5, 0, 0)}, eps, "refused splits");
+  expect_at(c.ambiguous_sites, {Point(20, 0, 0)}, eps, "ambiguous sites");
+  // The counts are those of the report; a place counted in several rounds is shown once.
+  EXPECT_EQ(c.welded_vertices.count, 2u);
+  EXPECT_EQ(c.t_junction_splits.count, 1u);
+  EXPECT_GE(c.refused_welds.count, 1u);
+  EXPECT_GE(c.refused_splits.count, 2u);
+  EXPECT_GE(c.ambiguous_sites.count, 1u);
+  // The page holds them, relative to the center of the soup.
+  std::vector<Point> points = soup_with_every_site_kind().points;
+  const std::string data = element_text(page_of(points, soup_with_every_site_kind().triangles, c),
+                                        "<script type=\"application/json\" id=\"viewer-data\">");
+  EXPECT_NE(data.find("\"t_junction_splits\": [[-5,"), std::string::npos);
+  EXPECT_NE(data.find("\"ambiguous_sites\": [[4,"), std::string::npos);
+}
+
+TEST(HtmlReportSites, TheRecorderChangesNoResult)
+{
+  Site_soup with = soup_with_every_site_kind(), without = soup_with_every_site_kind();
+  ST::Reconstruction_report recorded;
+  repaired_content(with, recorded);
+  const auto np = ST::parameters::small_features(ST::Small_features::REFUSE, CGAL::parameters::snapping_tolerance(0.1));
+  ST::IO::Html_report_site_recorder recorder;
+  const ST::Reconstruction_report plain = ST::reconstruct_topology(without.points, without.triangles, np);
+  ST::reconstruct_topology(with.points, with.triangles,
+                           ST::parameters::small_features(ST::Small_features::REFUSE,
+                                                          CGAL::parameters::snapping_tolerance(0.1).visitor(std::ref(recorder))));
+  EXPECT_EQ(ST::IO::reconstruction_report_json(recorded), ST::IO::reconstruction_report_json(plain));
+  EXPECT_EQ(with.points, without.points);
+  EXPECT_EQ(with.triangles, without.triangles);
+  // One entry per event the report counts.
+  EXPECT_EQ(recorder.welded_vertices.size(), plain.snapped_vertices);
+  EXPECT_EQ(recorder.t_junction_splits.size(), plain.split_triangles);
+  EXPECT_EQ(recorder.refused_welds.size(), plain.refused_welds());
+  EXPECT_EQ(recorder.refused_splits.size(), plain.refused_splits);
+  EXPECT_EQ(recorder.ambiguous_sites.size(), plain.ambiguous_sites + plain.ambiguous_t_junctions);
+}
+
+TEST(HtmlReportSites, SamePositionsForAShuffledSoup)
+{
+  ST::Reconstruction_report report;
+  const ST::IO::Html_report_content expected = repaired_content(soup_with_every_site_kind(), report);
+  std::mt19937 random(16);
+  for(int trial = 0; trial < 4; ++trial) {
+    const Site_soup s = soup_with_every_site_kind();
+    std::vector<std::size_t> order(s.points.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::shuffle(order.begin(), order.end(), random);
+    Site_soup shuffled;
+    std::vector<std::size_t> new_index(order.size());
+    for(std::size_t i = 0; i < order.size(); ++i) {
+      shuffled.points.push_back(s.points[order[i]]);
+      new_index[order[i]] = i;
+    }
+    for(const Triangle& t : s.triangles) {
+      const std::size_t turn = random() % 3;
+      shuffled.triangles.push_back(
+        {new_index[t[turn]], new_index[t[(turn + 1) % 3]], new_index[t[(turn + 2) % 3]]});
+    }
+    std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), random);
+    ST::Reconstruction_report shuffled_report;
+    const ST::IO::Html_report_content c = repaired_content(shuffled, shuffled_report);
+    EXPECT_EQ(c.welded_vertices.positions, expected.welded_vertices.positions);
+    EXPECT_EQ(c.t_junction_splits.positions, expected.t_junction_splits.positions);
+    EXPECT_EQ(c.refused_welds.positions, expected.refused_welds.positions);
+    EXPECT_EQ(c.refused_splits.positions, expected.refused_splits.positions);
+    EXPECT_EQ(c.ambiguous_sites.positions, expected.ambiguous_sites.positions);
+  }
+}
+
+// A split visitor that keeps every call, in order.
+struct Split_calls : ST::Default_split_visitor
+{
+  std::vector<std::array<std::size_t, 4>> splits, refusals, ambiguous;
+  void on_split(std::size_t v, std::size_t a, std::size_t b) { splits.push_back({v, a, b, 0}); }
+  void on_split_refusal(std::size_t v, std::size_t a, std::size_t b, ST::Split_refusal_reason reason)
+  { refusals.push_back({v, a, b, static_cast<std::size_t>(reason)}); }
+  void on_ambiguous_t_junction(std::size_t v, std::size_t a, std::size_t b) { ambiguous.push_back({v, a, b, 0}); }
+};
+
+template <class ConcurrencyTag>
+Split_calls split_calls(ST::Split_report& report)
+{
+  Site_soup s = soup_with_every_site_kind();
+  Split_calls calls;
+  report = ST::split_t_junctions<ConcurrencyTag>(s.points, s.triangles,
+                                                 CGAL::parameters::snapping_tolerance(0.1).visitor(std::ref(calls)));
+  return calls;
+}
+
+TEST(HtmlReportSites, SplitVisitorIsToldEveryEventInTheSameOrderOnAnyThreads)
+{
+  ST::Split_report report, parallel_report;
+  const Split_calls calls = split_calls<CGAL::Sequential_tag>(report);
+  EXPECT_EQ(calls.splits.size(), report.split_triangles);
+  EXPECT_EQ(calls.refusals.size(), report.refused_overlap + report.refused_degenerate + report.refused_flip);
+  EXPECT_EQ(calls.ambiguous.size(), report.ambiguous);
+  ASSERT_EQ(calls.splits.size(), 1u);
+  const Site_soup s = soup_with_every_site_kind();
+  EXPECT_EQ(s.points[calls.splits[0][0]], Point(11, 0, 0));
+  ASSERT_EQ(calls.refusals.size(), 2u);
+  for(const auto& r : calls.refusals) EXPECT_EQ(r[3], static_cast<std::size_t>(ST::Split_refusal_reason::OVERLAP));
+  const Split_calls parallel_calls = split_calls<CGAL::Parallel_if_available_tag>(parallel_report);
+  EXPECT_EQ(parallel_calls.splits, calls.splits);
+  EXPECT_EQ(parallel_calls.refusals, calls.refusals);
+  EXPECT_EQ(parallel_calls.ambiguous, calls.ambiguous);
+}
+
+TEST(HtmlReportSites, RefusesAnIndexBeyondThePoints)
+{
+  ST::IO::Html_report_site_recorder recorder;
+  recorder.refused_welds.push_back({0, 3});
+  ST::IO::Html_report_content content;
+  const std::vector<Point> points(3, Point(0, 0, 0));
+  EXPECT_THROW(ST::IO::add_site_positions(content, recorder, points), ST::Invalid_input);
 }
 
 std::string read_file(const std::string& path)

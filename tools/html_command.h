@@ -5,8 +5,9 @@
 //   soup_topology stats FILE --html REPORT.html
 //   soup_topology repair IN -o OUT ... --html REPORT.html
 // The page embeds the object that `--json` prints, and shows the soup (as read for `stats`, as
-// written for `repair`), the gap histogram of the input and the welded vertices. Like the other
-// outputs, the page is written to a temporary file and renamed over REPORT.html.
+// written for `repair`), the gap histogram of the input and, for `repair`, the sites where the
+// repair acted (welds, splits, refusals, ambiguous sites) at the points of the input. Like the
+// other outputs, the page is written to a temporary file and renamed over REPORT.html.
 
 #ifndef SOUP_TOPOLOGY_TOOLS_HTML_COMMAND_H
 #define SOUP_TOPOLOGY_TOOLS_HTML_COMMAND_H
@@ -18,7 +19,6 @@
 
 #include "output_files.h"
 
-#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <filesystem>
@@ -27,12 +27,14 @@
 
 namespace soup_topology_tool {
 
-/// the soup as read, kept for the page of a repair (the repair changes it in place).
+/// the soup as read, kept for the page of a repair (the repair changes it in place), and the
+/// sites the repair tells, as indices of its points.
 template <class Point>
 struct Html_input_soup
 {
   std::vector<Point> points;
   std::vector<std::array<std::size_t, 3>> triangles;
+  Soup_topology::IO::Html_report_site_recorder sites;
 };
 
 /// checks that REPORT.html is none of the other files of the command and can be written.
@@ -93,8 +95,8 @@ void write_stats_html(const std::string& file, const std::string& input, const s
   write_html_page(file, points, triangles, c);
 }
 
-/// the page of `soup_topology repair`: the soup written, the counts of `r`, and the input's
-/// gaps and welded vertices (the points of `input` that no output point keeps).
+/// the page of `soup_topology repair`: the soup written, the counts of `r`, the input's gaps
+/// and the sites recorded in `input.sites`, at the points of `input`.
 template <class Point>
 void write_repair_html(const std::string& file, const std::string& input_name, const Html_input_soup<Point>& input,
                        const std::vector<Point>& points, const std::vector<std::array<std::size_t, 3>>& triangles,
@@ -104,14 +106,7 @@ void write_repair_html(const std::string& file, const std::string& input_name, c
   c.title = "soup_topology repair " + std::filesystem::path(input_name).filename().string();
   c.report_json = report_json;
   add_input_gaps(c, input.points, input.triangles);
-  std::vector<Point> kept(points);
-  std::sort(kept.begin(), kept.end());
-  for(const Point& p : input.points)
-    if(!std::binary_search(kept.begin(), kept.end(), p))
-      c.welded_vertices.positions.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
-  if(c.refused_welds.count + c.t_junction_splits.count + c.refused_splits.count + c.ambiguous_sites.count > 0)
-    c.notes.push_back("Only the welded vertices are shown as markers: the report counts the other sites "
-                      "without their positions.");
+  Soup_topology::IO::add_site_positions(c, input.sites, input.points);
   write_html_page(file, points, triangles, c);
 }
 

@@ -103,7 +103,8 @@ const char* usage_text =
   "      tolerance (a sliver): collapse (default: merged, the triangle removed) or refuse (left\n"
   "      apart and reported as ambiguous).\n"
   "      --html writes a self-contained HTML page with a 3D view of the result (stats: of the\n"
-  "      input), its border edges, the holes, the report and the gap histogram of the input.\n"
+  "      input), its border edges, the holes, the report and the gap histogram of the input;\n"
+  "      for repair also the sites where it welded, split, refused or found ambiguity.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -424,17 +425,22 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
 
 // The soup as read is exactly welded already (read_triangle_soup): the pipeline does not weld
 // it a second time.
-ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles)
+// `visitor` is told what the repair did (the sites of the HTML report), or is a
+// `Default_snap_visitor` that records nothing.
+template <class Visitor>
+ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles,
+                                      Visitor& visitor)
 {
-  const auto split = ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(o.split));
+  const auto told = CGAL::parameters::visitor(std::ref(visitor));
+  const auto split = ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(o.split, told));
   if(o.tolerance)
     return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
-                                                          o.split, CGAL::parameters::snapping_tolerance(*o.tolerance))));
+                                                          o.split, told.snapping_tolerance(*o.tolerance))));
   if(o.relative)
     return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
-                                                          o.split, ST::parameters::relative_tolerance(*o.relative))));
+                                                          o.split, ST::parameters::relative_tolerance(*o.relative, told))));
   return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(points, triangles, split);
 }
 
@@ -533,8 +539,10 @@ int run_repair(const std::vector<std::string>& args)
     o.tolerance_choice = chosen.verdict + ": " + chosen.reasoning;
   }
   tool::Html_input_soup<Point> html_input;
-  if(!o.html_file.empty()) html_input = {points, triangles};
-  const ST::Reconstruction_report r = reconstruct(o, points, triangles);
+  if(!o.html_file.empty()) html_input = {points, triangles, {}};
+  ST::Default_snap_visitor no_sites;
+  const ST::Reconstruction_report r = o.html_file.empty() ? reconstruct(o, points, triangles, no_sites)
+                                                          : reconstruct(o, points, triangles, html_input.sites);
   progress("repaired the soup");
 
   // What is written: repeated triangles left out, components oriented, non-manifold vertices

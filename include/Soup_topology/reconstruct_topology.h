@@ -169,7 +169,27 @@ struct Pipeline_visitor
   {
     user->on_refusal((*input_index)[vertex], (*input_index)[representative], reason);
   }
+  // Given to `split_t_junctions()` when the caller's visitor is also a split visitor.
+  void on_split(std::size_t vertex, std::size_t a, std::size_t b)
+  {
+    user->on_split((*input_index)[vertex], (*input_index)[a], (*input_index)[b]);
+  }
+  void on_split_refusal(std::size_t vertex, std::size_t a, std::size_t b, Split_refusal_reason reason)
+  {
+    user->on_split_refusal((*input_index)[vertex], (*input_index)[a], (*input_index)[b], reason);
+  }
+  void on_ambiguous_t_junction(std::size_t vertex, std::size_t a, std::size_t b)
+  {
+    user->on_ambiguous_t_junction((*input_index)[vertex], (*input_index)[a], (*input_index)[b]);
+  }
 };
+
+/// whether `Visitor` has `on_ambiguous_site(std::size_t)`.
+template <class Visitor, class = void>
+struct tells_ambiguous_sites : std::false_type {};
+template <class Visitor>
+struct tells_ambiguous_sites<Visitor, std::void_t<decltype(std::declval<Visitor&>().on_ambiguous_site(std::size_t()))>>
+  : std::true_type {};
 
 /// calls `f(visitor)` with the caller's visitor of `np`: a reference when given as `std::ref(v)`,
 /// otherwise a copy (a `Default_snap_visitor` when none is given). A visitor given by value
@@ -298,11 +318,20 @@ public:
       add_weld_report(s, round);
       sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
       std::size_t splits = 0;
-      if(do_split) splits = add_split_report(split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np));
+      if(do_split) {
+        if constexpr(is_split_visitor<User_visitor>::value)
+          splits = add_split_report(
+            split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np.visitor(std::ref(recorder))));
+        else
+          splits = add_split_report(split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np));
+      }
       if(s.merged_vertices == 0 && splits == 0) break;
     }
     std::sort(sites.begin(), sites.end());
-    report_.ambiguous_sites = static_cast<std::size_t>(std::unique(sites.begin(), sites.end()) - sites.begin());
+    sites.erase(std::unique(sites.begin(), sites.end()), sites.end());
+    report_.ambiguous_sites = sites.size();
+    if constexpr(tells_ambiguous_sites<User_visitor>::value)
+      for(std::size_t v : sites) user_visitor.on_ambiguous_site(input_index_[v]);
   }
 
   /// how far the points moved: every input point follows its exact-weld image (same
@@ -544,7 +573,12 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     fraction of the bounding-box diagonal} \cgalParamNEnd
 ///   \cgalParamNBegin{visitor} \cgalParamDescription{told every weld and every refused weld of every
 ///     round, with the indices of `points` (a point merged by the exact weld is known by the first
-///     of the equal points)} \cgalParamType{a model of `SnapVisitor`, a copy or `std::ref(v)`}
+///     of the equal points). If it also has the member functions of `Default_split_visitor`, it is
+///     told every split, refused split and ambiguous T-junction of every round; if it has
+///     `on_ambiguous_site(std::size_t vertex)`, it is told once, after the rounds, each ambiguous
+///     site of the weld (`Snap_report::ambiguous_sites` over all rounds, each once; the vertex is the
+///     lexicographically smallest point of the site). Same indices. A visitor without these members
+///     costs nothing more.} \cgalParamType{a model of `SnapVisitor`, a copy or `std::ref(v)`}
 ///     \cgalParamDefault{`Default_snap_visitor`} \cgalParamNEnd
 ///   \cgalParamNBegin{maximum_number_of_rounds} \cgalParamDescription{the most weld/split rounds run}
 ///     \cgalParamType{`std::size_t`} \cgalParamDefault{8} \cgalParamNEnd

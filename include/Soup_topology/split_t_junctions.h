@@ -11,7 +11,6 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/internal/soup_checks.h>
-#include <Soup_topology/internal/split_t_junctions_worker.h>
 #include <Soup_topology/internal/tolerance.h>
 
 #include <CGAL/Named_function_parameters.h>
@@ -19,6 +18,9 @@
 #include <CGAL/tags.h>
 
 #include <cstddef>
+#include <functional>
+#include <type_traits>
+#include <utility>
 
 namespace Soup_topology {
 
@@ -36,6 +38,66 @@ struct Split_report
   std::size_t border_edges_before = 0;    ///< border edges before
   std::size_t border_edges_after = 0;     ///< border edges after
 };
+
+/// \ingroup PkgSoupTopologyTJunctions
+/// \brief why a split at a T-junction was refused.
+enum class Split_refusal_reason
+{
+  OVERLAP,     ///< the border edge of the vertex would overlap the split triangle
+  DEGENERATE,  ///< a new triangle would be degenerate (collinear corners)
+  FLIP         ///< a new triangle would reverse its normal
+};
+
+/// \ingroup PkgSoupTopologyTJunctions
+/// \brief a visitor that is told nothing; the default of the `visitor` parameter of
+/// `split_t_junctions()`. A user visitor provides the same three member functions (deriving from
+/// this class gives the ones it does not need). Every call names a vertex and the border edge
+/// `[a,b]` it was found near, by their indices in `points`; the vertex lies within the tolerance
+/// of that edge, so its point locates the event. The calls come in the same order on any number of
+/// threads; each adds one to the `Split_report` count named below.
+struct Default_split_visitor
+{
+  /// the triangle along the border edge `[a,b]` is split at `vertex` (`Split_report::split_triangles`).
+  void on_split(std::size_t /*vertex*/, std::size_t /*a*/, std::size_t /*b*/) {}
+  /// the split of the border edge `[a,b]` at `vertex` is refused for `reason`
+  /// (`Split_report::refused_overlap`, `refused_degenerate`, `refused_flip`).
+  void on_split_refusal(std::size_t /*vertex*/, std::size_t /*a*/, std::size_t /*b*/, Split_refusal_reason /*reason*/) {}
+  /// `vertex` is ambiguous near the border edge `[a,b]`: near several border edges (`[a,b]` is the
+  /// nearest), or within twice the tolerance of an end point (`Split_report::ambiguous`).
+  void on_ambiguous_t_junction(std::size_t /*vertex*/, std::size_t /*a*/, std::size_t /*b*/) {}
+};
+
+namespace internal {
+
+/// whether `Visitor` has the member functions of `Default_split_visitor`.
+template <class Visitor, class = void>
+struct is_split_visitor : std::false_type {};
+template <class Visitor>
+struct is_split_visitor<Visitor, std::void_t<
+  decltype(std::declval<Visitor&>().on_split(std::size_t(), std::size_t(), std::size_t())),
+  decltype(std::declval<Visitor&>().on_split_refusal(std::size_t(), std::size_t(), std::size_t(), Split_refusal_reason())),
+  decltype(std::declval<Visitor&>().on_ambiguous_t_junction(std::size_t(), std::size_t(), std::size_t()))>>
+  : std::true_type {};
+
+/// the visitor of a `visitor` parameter given as `Given`: `Given` itself (held by copy), or `T`
+/// for `std::reference_wrapper<T>` (held by reference).
+template <class Given>
+struct Split_visitor_type
+{
+  using type = Given;
+  static type& get(Given& held) { return held; }
+};
+template <class T>
+struct Split_visitor_type<std::reference_wrapper<T>>
+{
+  using type = T;
+  static type& get(std::reference_wrapper<T>& held) { return held.get(); }
+};
+
+template <class Kernel, class Report, class Visitor>
+class T_junction_splitter;
+
+} // namespace internal
 
 /// \ingroup PkgSoupTopologyTJunctions
 /// \brief repairs T-junctions: a vertex lying within the tolerance of the interior of a border
@@ -97,6 +159,10 @@ struct Split_report
 ///   \cgalParamNBegin{geom_traits} \cgalParamDescription{an instance of a geometric traits class, which
 ///     takes every decision} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type}
 ///     \cgalParamNEnd
+///   \cgalParamNBegin{visitor} \cgalParamDescription{told of every split, refused split and ambiguous
+///     vertex; copied, unless given as `std::ref(v)`} \cgalParamType{a class with the member functions
+///     of `Default_split_visitor`} \cgalParamDefault{`Default_split_visitor` (nothing is recorded)}
+///     \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \returns a `Split_report`.
 /// \throws Invalid_input for an invalid tolerance, non-finite coordinates or mismatched tables.
@@ -109,10 +175,18 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   using Kernel = typename NP_helper::Geom_traits;
   using FT = typename NP_helper::FT;
   using Face = typename TriangleRange::value_type;
+  using Given_visitor = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
+                                                                           Default_split_visitor>::type;
+  using Visitor_type = internal::Split_visitor_type<Given_visitor>;
+  static_assert(internal::is_split_visitor<typename Visitor_type::type>::value,
+                "split_t_junctions: the visitor needs the member functions of Default_split_visitor");
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
-  internal::T_junction_splitter<Kernel, Split_report> splitter(NP_helper::read_points(points, np), tables, kernel, eps);
+  Given_visitor visitor = CGAL::parameters::choose_parameter<Given_visitor>(
+    CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor));
+  internal::T_junction_splitter<Kernel, Split_report, typename Visitor_type::type> splitter(
+    NP_helper::read_points(points, np), tables, kernel, eps, Visitor_type::get(visitor));
   const Split_report report = splitter.template run<ConcurrencyTag>();
   // Write the triangles back: the split ones and the new ones.
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {
@@ -138,5 +212,8 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
 }
 
 } // namespace Soup_topology
+
+// The steps, after the types they report with.
+#include <Soup_topology/internal/split_t_junctions_worker.h>
 
 #endif // SOUP_TOPOLOGY_SPLIT_T_JUNCTIONS_H

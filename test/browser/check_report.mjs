@@ -3,12 +3,14 @@
 //
 // Opens an HTML report of soup_topology in headless Chromium (software GL) from file:// and checks it:
 //   node check_report.mjs --page REPORT.html [--json REPORT.json] [--screenshot OUT.png]
-//                         [--red yes|no] [--max-seconds S] [--chromium PATH]
+//                         [--red yes|no] [--markers yes] [--max-seconds S] [--chromium PATH]
 // Fails (exit code 1) on a console error or an uncaught exception, on any request other than the
 // page itself, when <body data-ready="true"> is not reached within S seconds (default 10), on a
-// blank view, when red pixels (border edges) are seen with --red no or missed with --red yes, and
-// when the element `report-json` is not the object of the --json file, and when a click on the
-// first listed hole does not move the view. Prints one line per check.
+// blank view, when red pixels (border edges) are seen with --red no or missed with --red yes,
+// when the element `report-json` is not the object of the --json file, when a click on the first
+// listed ambiguous site (or, without one, the first listed hole) does not move the view, and on
+// the markers: a kind counted without positions, a kind whose switch does not change the view when
+// turned off, or, with --markers yes, no kind counted at all. Prints one line per check.
 
 import { createRequire } from 'node:module';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -34,6 +36,7 @@ function parse_arguments(argv) {
       case '--json': options.json = value(); break;
       case '--screenshot': options.screenshot = value(); break;
       case '--red': options.red = value(); break;
+      case '--markers': options.markers = value(); break;
       case '--max-seconds': options.maxSeconds = Number(value()); break;
       case '--chromium': options.chromium = value(); break;
       default: throw new Error(`unknown argument '${argv[i]}'`);
@@ -41,6 +44,7 @@ function parse_arguments(argv) {
   }
   if (!options.page) throw new Error('--page REPORT.html is needed');
   if (options.red && options.red !== 'yes' && options.red !== 'no') throw new Error('--red takes yes or no');
+  if (options.markers && options.markers !== 'yes') throw new Error('--markers takes yes');
   return options;
 }
 
@@ -116,6 +120,48 @@ function analyse_pixels(image, box) {
   return { red, total, drawn: total - background, colours: counts.size };
 }
 
+// The number of pixels inside `box` that differ between two images of the same size.
+function count_changed_pixels(a, b, box) {
+  let changed = 0;
+  const x0 = Math.max(0, Math.floor(box.x)), y0 = Math.max(0, Math.floor(box.y));
+  const x1 = Math.min(a.width, Math.floor(box.x + box.width)), y1 = Math.min(a.height, Math.floor(box.y + box.height));
+  for (let y = y0; y < y1; ++y) {
+    for (let x = x0; x < x1; ++x) {
+      const o = (y * a.width + x) * 4;
+      if (a.pixels[o] !== b.pixels[o] || a.pixels[o + 1] !== b.pixels[o + 1] || a.pixels[o + 2] !== b.pixels[o + 2]) ++changed;
+    }
+  }
+  return changed;
+}
+
+// The marker kinds: every kind counted has positions on the page, and turning off the kind with
+// the most positions changes the view (and turning it on again restores it).
+async function check_markers(page, box, image) {
+  const kinds = await page.evaluate(() => {
+    const data = JSON.parse(document.getElementById('viewer-data').textContent);
+    return Object.keys(data.marker_counts).map((key) => ({
+      key, count: data.marker_counts[key], shown: (data.markers[key] || []).length,
+    }));
+  });
+  const counted = kinds.filter((k) => k.count > 0);
+  console.log(`     markers: ${kinds.map((k) => `${k.key} ${k.count} (${k.shown} places)`).join(', ')}`);
+  if (options.markers === 'yes') check(counted.length > 0, `marker kinds counted: ${counted.length}`);
+  const unplaced = counted.filter((k) => k.shown === 0).map((k) => k.key);
+  check(unplaced.length === 0, `every kind counted has positions${unplaced.length ? ': missing for ' + unplaced.join(', ') : ''}`);
+  if (counted.length === 0) return;
+  const most = kinds.reduce((a, b) => (b.shown > a.shown ? b : a));
+  const box_input = `input[type="checkbox"][data-kind="${most.key}"]`;
+  await page.click(box_input);
+  await page.waitForTimeout(400);
+  const off = decode_png(await page.screenshot({ type: 'png' }));
+  const changed = count_changed_pixels(image, off, box);
+  check(changed > 0, `turning off the ${most.key} markers changes the view (${changed} pixels)`);
+  await page.click(box_input);
+  await page.waitForTimeout(400);
+  const on = decode_png(await page.screenshot({ type: 'png' }));
+  check(count_changed_pixels(image, on, box) === 0, `turning them on again restores the view`);
+}
+
 const options = parse_arguments(process.argv.slice(2));
 const failures = [];
 const check = (ok, what) => {
@@ -160,20 +206,27 @@ try {
     const r = document.getElementById('view').getBoundingClientRect();
     return { x: r.x, y: r.y, width: r.width, height: r.height };
   });
-  const pixels = analyse_pixels(decode_png(screenshot), box);
+  const image = decode_png(screenshot);
+  const pixels = analyse_pixels(image, box);
   check(pixels.drawn > pixels.total / 100 && pixels.colours > 1,
     `the view is not blank (${pixels.drawn} of ${pixels.total} pixels drawn, ${pixels.colours} colours)`);
   if (options.red === 'yes') check(pixels.red > 0, `red pixels (border edges) seen: ${pixels.red}`);
   if (options.red === 'no') check(pixels.red === 0, `no red pixel (no border edge): ${pixels.red}`);
 
-  // A click on the first hole (or ambiguous site) of the list flies the camera there.
-  const problem = await page.$('ol.problems li');
+  await check_markers(page, box, image);
+
+  // A click on the first ambiguous site (or, without one, the first hole) of the list flies the
+  // camera there.
+  const problem = (await page.$('ol.problems li[data-kind="ambiguous"]')) || (await page.$('ol.problems li'));
   if (problem) {
+    const what = await problem.evaluate((li) => (li.dataset.kind === 'ambiguous' ? 'ambiguous site' : li.dataset.kind || 'problem'));
     await problem.click();
     await page.waitForTimeout(1200);
-    const after = analyse_pixels(decode_png(await page.screenshot({ type: 'png' })), box);
-    check(after.drawn !== pixels.drawn || after.red !== pixels.red,
-      `a click on the first listed problem moves the view (${pixels.drawn} -> ${after.drawn} pixels drawn)`);
+    const moved = decode_png(await page.screenshot({ type: 'png' }));
+    const after = analyse_pixels(moved, box);
+    const changed = count_changed_pixels(image, moved, box);
+    check(changed > pixels.total / 100,
+      `a click on the first listed ${what} moves the view (${changed} pixels changed, ${pixels.drawn} -> ${after.drawn} drawn)`);
   }
 
   if (options.json) {

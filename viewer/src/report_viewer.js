@@ -3,7 +3,8 @@
 //
 // The report page: reads the element `viewer-data` written by write_html_report(), draws the
 // mesh with its border and non-manifold edges and the markers, and fills the side panel (the
-// before/after table, the tolerance, the gap histogram, the holes and the ambiguous sites).
+// before/after table, the tolerance, the gap histogram, the marker switches, and the open
+// problems: the holes and the ambiguous sites, a click flying the camera there).
 // Sets `data-ready="true"` on <body> once the first frame is drawn.
 
 const marker_kinds = [
@@ -11,7 +12,7 @@ const marker_kinds = [
   { key: 't_junction_splits', label: 'T-junction splits', color: 0x33ccff },
   { key: 'refused_welds', label: 'refused welds', color: 0xff8800 },
   { key: 'refused_splits', label: 'refused splits', color: 0xcc66ff },
-  { key: 'ambiguous_sites', label: 'ambiguous sites', color: 0xffee00 },
+  { key: 'ambiguous_sites', label: 'ambiguous sites (below the tolerance)', color: 0xffee00 },
 ];
 
 function decode_base64(text, ArrayType) {
@@ -26,6 +27,10 @@ function element(tag, attributes, text) {
   for (const [k, v] of Object.entries(attributes || {})) e.setAttribute(k, v);
   if (text !== undefined) e.textContent = text;
   return e;
+}
+
+function plural(n, noun) {
+  return `${n.toLocaleString()} ${noun}${n === 1 ? '' : 's'}`;
 }
 
 function format_length(x) {
@@ -211,29 +216,43 @@ for (const kind of marker_kinds) {
   box.disabled = shown === 0;
   box.addEventListener('change', () => { marker_objects[kind.key].visible = box.checked; request_draw(); });
   const swatch = element('span', { class: 'swatch', style: `background:#${kind.color.toString(16).padStart(6, '0')}` });
-  label.append(box, swatch, `${kind.label}: ${count === null ? '-' : count}` +
-    (count && shown === 0 ? ' (positions not recorded)' : ''));
+  let where = '';
+  if (count && shown === 0) where = ' (positions not recorded)';
+  else if (shown !== count) where = ` at ${shown} places`;
+  label.append(box, swatch, `${kind.label}: ${count === null ? '-' : count}${where}`);
   panel.append(label);
 }
 
-function problem_list(title, items, describe, empty_text, total) {
-  panel.append(element('h2', {}, title));
-  if (items.length === 0) { panel.append(element('p', { class: 'note' }, empty_text)); return; }
-  const list = element('ol', { class: 'problems' });
-  for (const item of items) {
-    const li = element('li', {}, describe(item));
+// The open problems: the holes (longest first), then the ambiguous sites; a click flies there.
+function open_problems() {
+  const listed_sites = 500;
+  const holes = data.holes.map((h) => ({
+    kind: 'hole', center: h.center, radius: h.radius,
+    text: `hole: ${h.edges} border edges, length ${format_length(h.length)}, size ${format_length(h.size)}`,
+  }));
+  const sites = (data.markers.ambiguous_sites || []).slice(0, listed_sites).map((p) => ({
+    kind: 'ambiguous', center: p, radius: data.tolerance || whole_distance / 1000,
+    text: `ambiguous site at ${p.map((c, i) => format_length(c + data.origin[i])).join(', ')}`,
+  }));
+  panel.append(element('h2', {}, 'Open problems'));
+  const site_count = data.marker_counts.ambiguous_sites;
+  panel.append(element('p', { class: 'note', id: 'open-problem-counts' },
+    `${data.holes_total === 0 ? 'No border edge: the mesh is closed' : plural(data.holes_total, 'hole')}; ` +
+    `${site_count ? plural(site_count, 'ambiguous site') : 'no ambiguous site'}` +
+    (site_count && sites.length === 0 ? ' (positions not recorded)' : '') + '.'));
+  if (holes.length + sites.length === 0) return;
+  const list = element('ol', { class: 'problems', id: 'open-problems' });
+  for (const item of holes.concat(sites)) {
+    const li = element('li', { 'data-kind': item.kind }, item.text);
+    if (item.kind === 'ambiguous') li.style.color = '#ffee00';
     li.addEventListener('click', () => fly_to(item.center, Math.max(item.radius * 4, whole_distance / 200)));
     list.append(li);
   }
   panel.append(list);
-  if (total > items.length) panel.append(element('p', { class: 'note' }, `${total - items.length} more not listed`));
+  const unlisted = (data.holes_total - holes.length) + Math.max(0, (data.markers.ambiguous_sites || []).length - sites.length);
+  if (unlisted > 0) panel.append(element('p', { class: 'note' }, `${unlisted} more not listed`));
 }
-problem_list('Holes', data.holes, (h) => `${h.edges} border edges, length ${format_length(h.length)}, size ${format_length(h.size)}`,
-  'No border edge: the mesh is closed.', data.holes_total);
-problem_list('Ambiguous sites', (data.markers.ambiguous_sites || []).map((p) => ({ center: p, radius: data.tolerance || whole_distance / 1000 })),
-  (s) => `at ${s.center.map((c, i) => format_length(c + data.origin[i])).join(', ')}`,
-  data.marker_counts.ambiguous_sites ? `${data.marker_counts.ambiguous_sites} sites; positions not recorded.` : 'None.',
-  0);
+open_problems();
 
 window.addEventListener('resize', resize);
 controls.look_at(sphere ? sphere.center : new THREE.Vector3(), whole_distance * 1.1);

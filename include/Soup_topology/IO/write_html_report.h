@@ -23,8 +23,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace Soup_topology {
@@ -39,12 +41,14 @@ constexpr std::size_t default_html_report_display_triangle_limit = 300000;
 constexpr std::size_t html_report_marker_limit = 100000;
 
 /// \ingroup PkgSoupTopologyIO
-/// \brief sites of one kind shown as markers: how many there are, and the positions known.
-/// `count` may exceed `positions.size()` when the positions were not all recorded.
+/// \brief sites of one kind shown as markers: how many the report counts, and where they are.
+/// `count` is the number of events of the report; `positions` holds each place once (an event
+/// repeated in several rounds, or a vertex near two border edges, is one place), and is empty
+/// when the positions were not recorded (`add_site_positions()`).
 struct Html_report_sites
 {
-  std::size_t count = 0;                          ///< number of sites
-  std::vector<std::array<double, 3>> positions;   ///< the positions known, in the coordinates of the points
+  std::size_t count = 0;                          ///< number of events
+  std::vector<std::array<double, 3>> positions;   ///< the places known, in the coordinates of the points
 };
 
 /// \ingroup PkgSoupTopologyIO
@@ -118,8 +122,8 @@ inline std::string reconstruction_report_json(const Reconstruction_report& repor
 
 /// \ingroup PkgSoupTopologyIO
 /// \brief the content of the report page of a repair: the JSON of `report`, the before/after
-/// table, the tolerance and the counts of the marker kinds (without positions: a caller that
-/// records them with a visitor adds them).
+/// table, the tolerance and the counts of the marker kinds (without positions: see
+/// `add_site_positions()`).
 /// \param report the report of `reconstruct_topology()`
 inline Html_report_content html_report_content(const Reconstruction_report& report)
 {
@@ -143,23 +147,310 @@ inline Html_report_content html_report_content(const Reconstruction_report& repo
   return c;
 }
 
+/// \ingroup PkgSoupTopologyIO
+/// \brief a visitor of `reconstruct_topology()` that records where the repair acted, for the
+/// markers of the report page (`add_site_positions()`). Give it as `visitor(std::ref(recorder))`.
+///
+/// It is a snap visitor and a split visitor (the members of `Default_snap_visitor` and
+/// `Default_split_visitor`) and is told the ambiguous sites of the weld; it keeps the indices of
+/// the points given to `reconstruct_topology()`, one entry per event the `Reconstruction_report`
+/// counts.
+struct Html_report_site_recorder
+{
+  std::vector<std::size_t> welded_vertices;   ///< the vertex merged into another, per weld
+  std::vector<std::size_t> t_junction_splits; ///< the vertex a triangle was split at, per split
+  /// the two vertices (the one refused, the representative) of each refused weld
+  std::vector<std::array<std::size_t, 2>> refused_welds;
+  std::vector<std::size_t> refused_splits;    ///< the vertex of each refused split
+  /// the smallest point of each ambiguous site of the weld, and the vertex of each ambiguous T-junction
+  std::vector<std::size_t> ambiguous_sites;
+
+  /// `duplicate` is merged into `representative`.
+  void on_merge(std::size_t duplicate, std::size_t /*representative*/) { welded_vertices.push_back(duplicate); }
+  /// the merge of `vertex` into `representative` is refused.
+  void on_refusal(std::size_t vertex, std::size_t representative, Refusal_reason /*reason*/)
+  { refused_welds.push_back({vertex, representative}); }
+  /// a triangle along the border edge `[a,b]` is split at `vertex`.
+  void on_split(std::size_t vertex, std::size_t /*a*/, std::size_t /*b*/) { t_junction_splits.push_back(vertex); }
+  /// the split of `[a,b]` at `vertex` is refused.
+  void on_split_refusal(std::size_t vertex, std::size_t /*a*/, std::size_t /*b*/, Split_refusal_reason /*reason*/)
+  { refused_splits.push_back(vertex); }
+  /// `vertex` is an ambiguous T-junction near `[a,b]`.
+  void on_ambiguous_t_junction(std::size_t vertex, std::size_t /*a*/, std::size_t /*b*/)
+  { ambiguous_sites.push_back(vertex); }
+  /// `vertex` is the smallest point of an ambiguous site of the weld.
+  void on_ambiguous_site(std::size_t vertex) { ambiguous_sites.push_back(vertex); }
+};
+
 } // namespace IO
 
 namespace internal {
 
-inline void write_html_sites(std::ostream& os, const char* key, const IO::Html_report_sites& sites,
-                             const Html_point& origin, bool& first)
+/// the point of element `v` of `points`, read through `pm`, in double.
+template <class PointRange, class PointMap>
+Html_point html_point_at(const PointRange& points, const PointMap& pm, std::size_t v)
 {
-  os << (first ? "" : ", ") << '"' << key << "\": [";
-  first = false;
-  const std::size_t n = std::min(sites.positions.size(), IO::html_report_marker_limit);
-  for(std::size_t i = 0; i < n; ++i) {
-    const auto& p = sites.positions[i];
-    os << (i ? "," : "") << '[' << html_json_float(static_cast<float>(p[0] - origin[0])) << ','
-       << html_json_float(static_cast<float>(p[1] - origin[1])) << ','
-       << html_json_float(static_cast<float>(p[2] - origin[2])) << ']';
+  const auto& p = get(pm, *(points.begin() + static_cast<std::ptrdiff_t>(v)));
+  return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+/// `positions` sorted lexicographically, each once.
+inline std::vector<Html_point> html_sorted_positions(std::vector<Html_point> positions)
+{
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+  return positions;
+}
+
+/// the positions of `sites` (indices into `points`, read through `pm`), sorted, each once.
+template <class PointRange, class PointMap>
+std::vector<Html_point> html_site_positions(const std::vector<std::size_t>& sites, const PointRange& points,
+                                            const PointMap& pm)
+{
+  std::vector<Html_point> out;
+  out.reserve(sites.size());
+  for(std::size_t v : sites) out.push_back(html_point_at(points, pm, v));
+  return html_sorted_positions(std::move(out));
+}
+
+/// throws `Invalid_input` if an index held by `recorder` is not below `n`.
+inline void check_site_indices(const IO::Html_report_site_recorder& recorder, std::size_t n)
+{
+  const auto check = [n](std::size_t v) {
+    if(v >= n)
+      throw Invalid_input("add_site_positions: the vertex " + std::to_string(v) + " is beyond the " +
+                          std::to_string(n) + " input points");
+  };
+  for(const auto* list : {&recorder.welded_vertices, &recorder.t_junction_splits, &recorder.refused_splits,
+                          &recorder.ambiguous_sites})
+    for(std::size_t v : *list) check(v);
+  for(const auto& pair : recorder.refused_welds) { check(pair[0]); check(pair[1]); }
+}
+
+} // namespace internal
+
+namespace IO {
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief sets the marker positions of `content` from what `recorder` was told during
+/// `reconstruct_topology()`.
+///
+/// The positions are those of the points given to `reconstruct_topology()` (`input_points`, as
+/// they were before the call replaced them; an output point keeps the coordinates of the input
+/// point it comes from): for a weld, the vertex merged away; for a split, a refused split and an
+/// ambiguous T-junction, the vertex found near the border edge (within the tolerance of it); for
+/// a refused weld, the midpoint of the two vertices (within half the tolerance of each); for an
+/// ambiguous site of the weld, its lexicographically smallest point. Each kind is sorted
+/// lexicographically and holds each position once, so the content does not depend on the order of
+/// the input; the counts of `content` (from `html_report_content()`) are left as they are.
+///
+/// \tparam PointRange a random-access range of points (read through `point_map`)
+/// \param content the content whose `welded_vertices`, `t_junction_splits`, `refused_welds`,
+///        `refused_splits` and `ambiguous_sites` positions are replaced
+/// \param recorder the visitor given to `reconstruct_topology()`
+/// \param input_points the points given to `reconstruct_topology()`
+/// \param np optional named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `input_points`}
+///     \cgalParamType{a model of `ReadablePropertyMap` whose value is a point of a CGAL kernel}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_input when an index held by `recorder` is not below the number of `input_points`.
+template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+void add_site_positions(Html_report_content& content, const Html_report_site_recorder& recorder,
+                        const PointRange& input_points,
+                        const NamedParameters& np = CGAL::parameters::default_values())
+{
+  namespace in = ::Soup_topology::internal;
+  const auto pm = in::Soup_np_helper<PointRange, NamedParameters>::get_point_map(np);
+  in::check_site_indices(recorder, static_cast<std::size_t>(std::distance(input_points.begin(), input_points.end())));
+  content.welded_vertices.positions = in::html_site_positions(recorder.welded_vertices, input_points, pm);
+  content.t_junction_splits.positions = in::html_site_positions(recorder.t_junction_splits, input_points, pm);
+  content.refused_splits.positions = in::html_site_positions(recorder.refused_splits, input_points, pm);
+  content.ambiguous_sites.positions = in::html_site_positions(recorder.ambiguous_sites, input_points, pm);
+  std::vector<in::Html_point> midpoints;
+  midpoints.reserve(recorder.refused_welds.size());
+  for(const auto& pair : recorder.refused_welds) {
+    const in::Html_point p = in::html_point_at(input_points, pm, pair[0]);
+    const in::Html_point q = in::html_point_at(input_points, pm, pair[1]);
+    // The same sum whichever vertex comes first: the midpoint does not depend on the order.
+    midpoints.push_back({p[0] / 2 + q[0] / 2, p[1] / 2 + q[1] / 2, p[2] / 2 + q[2] / 2});
+  }
+  content.refused_welds.positions = in::html_sorted_positions(std::move(midpoints));
+}
+
+} // namespace IO
+
+namespace internal {
+
+/// the soup as the page uses it: the points in double, the triangles checked.
+struct Html_soup
+{
+  std::vector<Html_point> points;
+  std::vector<Html_triangle> triangles;
+};
+
+/// reads `points` through `pm` and checks that every element of `triangles` has 3 indices below
+/// `points.size()`.
+template <class PointRange, class TriangleRange, class PointMap>
+Html_soup html_soup(const PointRange& points, const TriangleRange& triangles, const PointMap& pm)
+{
+  Html_soup soup;
+  soup.points.reserve(points.size());
+  for(const auto& e : points) {
+    const auto& p = get(pm, e);
+    soup.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+  }
+  soup.triangles.reserve(triangles.size());
+  for(const auto& f : triangles) {
+    if(f.size() != 3)
+      throw Invalid_input("face " + std::to_string(soup.triangles.size()) + " has " + std::to_string(f.size()) +
+                          " vertices");
+    Html_triangle t{};
+    for(std::size_t i = 0; i < 3; ++i) {
+      const auto v = static_cast<std::size_t>(f[i]);
+      if(v >= soup.points.size())
+        throw Invalid_input("face " + std::to_string(soup.triangles.size()) + " has the index " + std::to_string(v) +
+                            ", beyond the " + std::to_string(soup.points.size()) + " points");
+      t[i] = static_cast<std::uint32_t>(v);
+    }
+    soup.triangles.push_back(t);
+  }
+  return soup;
+}
+
+/// the center of the bounding box of `points` (the origin of the coordinates written in float).
+inline Html_point html_center(const std::vector<Html_point>& points)
+{
+  Html_point origin{0, 0, 0};
+  if(points.empty()) return origin;
+  Html_point low = points.front(), high = points.front();
+  for(const Html_point& p : points)
+    for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
+  for(int c = 0; c < 3; ++c) origin[c] = (low[c] + high[c]) / 2;
+  return origin;
+}
+
+/// `values` as a JSON array of strings.
+inline std::string html_json_strings(const std::vector<std::string>& values)
+{
+  std::string out = "[";
+  for(std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + html_script_safe(html_json_string(values[i]));
+  return out + "]";
+}
+
+/// `p - origin` as a JSON array of three floats.
+inline std::string html_json_relative_point(const Html_point& p, const Html_point& origin)
+{
+  return '[' + html_json_float(static_cast<float>(p[0] - origin[0])) + ',' +
+         html_json_float(static_cast<float>(p[1] - origin[1])) + ',' +
+         html_json_float(static_cast<float>(p[2] - origin[2])) + ']';
+}
+
+/// the text of the side panel: title, tolerance, notes, table and gap histogram.
+inline void write_html_tables(std::ostream& os, const IO::Html_report_content& content)
+{
+  os << "\"title\": " << html_script_safe(html_json_string(content.title));
+  os << ", \"tolerance\": " << html_json_number(content.tolerance);
+  os << ", \"notes\": " << html_json_strings(content.notes);
+  os << ", \"table_header\": " << html_json_strings(content.table_header) << ", \"table\": [";
+  for(std::size_t r = 0; r < content.table.size(); ++r) os << (r ? ", " : "") << html_json_strings(content.table[r]);
+  os << "], \"gap_histogram\": [";
+  for(std::size_t i = 0; i < content.gap_histogram.size(); ++i) {
+    const Gap_histogram_bin& b = content.gap_histogram[i];
+    os << (i ? ", " : "") << "{\"lower\": " << html_json_number(b.lower) << ", \"upper\": " << html_json_number(b.upper)
+       << ", \"count\": " << b.count << '}';
+  }
+  os << "], \"gap_note\": " << html_script_safe(html_json_string(content.gap_note));
+}
+
+/// the holes, longest first (at most `listed` of them), their centers relative to `origin`.
+inline void write_html_holes(std::ostream& os, const std::vector<Html_hole>& holes, const Html_point& origin)
+{
+  constexpr std::size_t listed = 500;
+  os << ", \"holes_total\": " << holes.size() << ", \"holes\": [";
+  for(std::size_t i = 0; i < std::min(holes.size(), listed); ++i) {
+    const Html_hole& h = holes[i];
+    os << (i ? ", " : "") << "{\"edges\": " << h.edges << ", \"length\": " << html_json_number(h.length)
+       << ", \"size\": " << html_json_number(h.size) << ", \"radius\": " << html_json_number(h.size / 2)
+       << ", \"center\": [" << html_json_number(h.center[0] - origin[0]) << ", "
+       << html_json_number(h.center[1] - origin[1]) << ", " << html_json_number(h.center[2] - origin[2]) << "]}";
   }
   os << ']';
+}
+
+/// the counts and the positions (relative to `origin`, at most `IO::html_report_marker_limit`) of
+/// every marker kind.
+inline void write_html_markers(std::ostream& os, const IO::Html_report_content& content, const Html_point& origin)
+{
+  const std::pair<const char*, const IO::Html_report_sites*> kinds[] = {
+    {"welded_vertices", &content.welded_vertices}, {"t_junction_splits", &content.t_junction_splits},
+    {"refused_welds", &content.refused_welds},     {"refused_splits", &content.refused_splits},
+    {"ambiguous_sites", &content.ambiguous_sites}};
+  os << ", \"marker_counts\": {";
+  for(std::size_t k = 0; k < std::size(kinds); ++k)
+    os << (k ? ", " : "") << '"' << kinds[k].first << "\": " << kinds[k].second->count;
+  os << "}, \"markers\": {";
+  for(std::size_t k = 0; k < std::size(kinds); ++k) {
+    const std::vector<std::array<double, 3>>& positions = kinds[k].second->positions;
+    os << (k ? ", " : "") << '"' << kinds[k].first << "\": [";
+    for(std::size_t i = 0; i < std::min(positions.size(), IO::html_report_marker_limit); ++i)
+      os << (i ? "," : "") << html_json_relative_point(positions[i], origin);
+    os << ']';
+  }
+  os << '}';
+}
+
+/// the display mesh: its size, and its points (relative to `origin`, in float), triangles and
+/// edges in base64.
+inline void write_html_display_mesh(std::ostream& os, const Html_display_mesh& display, std::size_t soup_triangles,
+                                    std::size_t limit, const Html_point& origin)
+{
+  std::vector<float> positions;
+  positions.reserve(3 * display.points.size());
+  for(const Html_point& p : display.points)
+    for(int c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - origin[c]));
+  std::vector<std::uint32_t> indices;
+  indices.reserve(3 * display.triangles.size());
+  for(const Html_triangle& t : display.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  os << ", \"origin\": [" << html_json_number(origin[0]) << ", " << html_json_number(origin[1]) << ", "
+     << html_json_number(origin[2]) << "]";
+  os << ", \"soup_triangles\": " << soup_triangles << ", \"displayed_triangles\": " << display.triangles.size()
+     << ", \"display_triangle_limit\": " << limit << ", \"decimated\": " << (display.decimated ? "true" : "false");
+  os << ", \"positions\": \"" << html_base64(positions) << '"';
+  os << ", \"triangles\": \"" << html_base64(indices) << '"';
+  os << ", \"border_edges\": \"" << html_base64(display.border_edges) << '"';
+  os << ", \"non_manifold_edges\": \"" << html_base64(display.non_manifold_edges) << '"';
+}
+
+/// the page up to the element `viewer-data`: the head, the panel, the canvas and `report-json`.
+inline void write_html_page_head(std::ostream& os, const IO::Html_report_content& content)
+{
+  os << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+     << "<title>" << html_escape(content.title) << "</title>\n"
+     << "<style>" << html_report_style() << "</style>\n</head>\n"
+     << "<body data-ready=\"false\">\n<div id=\"panel\"></div>\n<canvas id=\"view\"></canvas>\n"
+     << "<script type=\"application/json\" id=\"report-json\">" << html_script_safe(content.report_json)
+     << "</script>\n";
+}
+
+/// the page after the element `viewer-data`: the viewer's license and script.
+inline void write_html_page_scripts(std::ostream& os, const IO::Html_report_content& content)
+{
+  os << "<script type=\"text/plain\" id=\"viewer-license\">\n";
+  if(content.viewer_script.empty())
+    for(const char* part : html_report_viewer_license) os << part;
+  else
+    os << html_script_safe(content.viewer_license);
+  os << "</script>\n<script type=\"module\">\n";
+  if(content.viewer_script.empty())
+    for(const char* part : html_report_viewer_script) os << part;
+  else
+    os << html_script_safe(content.viewer_script);
+  os << "</script>\n</body>\n</html>\n";
 }
 
 } // namespace internal
@@ -172,8 +463,9 @@ namespace IO {
 /// The page is one self-contained file: it makes no network request and opens from `file://`.
 /// It shows the soup shaded, its border edges (red) and non-manifold edges (magenta) as found
 /// by `Adjacency_tables`, the sites of `content` as markers that can be switched on and off by
-/// kind, the holes (chains of border edges, longest first; a click flies the camera there), the
-/// table, the tolerance and the gap histogram. `content.report_json` is written unchanged
+/// kind (the ambiguous sites in yellow), the open problems (the holes, chains of border edges,
+/// longest first, then the ambiguous sites; a click flies the camera there), the table, the
+/// tolerance and the gap histogram. `content.report_json` is written unchanged
 /// (but for `</` written `<\/`, the same JSON value) into
 /// `<script type="application/json" id="report-json">`. `<body>` gets `data-ready="true"`
 /// once the first frame is drawn.
@@ -206,133 +498,28 @@ void write_html_report(std::ostream& os, const PointRange& points, const Triangl
                        const Html_report_content& content,
                        const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using NP_helper = ::Soup_topology::internal::Soup_np_helper<PointRange, NamedParameters>;
-  using ::Soup_topology::internal::Html_point;
-  using ::Soup_topology::internal::Html_triangle;
-  const auto pm = NP_helper::get_point_map(np);
-
-  std::vector<Html_point> pts;
-  pts.reserve(points.size());
-  for(const auto& e : points) {
-    const auto& p = get(pm, e);
-    pts.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
-  }
-  std::vector<Html_triangle> tris;
-  tris.reserve(triangles.size());
-  for(const auto& f : triangles) {
-    if(f.size() != 3)
-      throw Invalid_input("face " + std::to_string(tris.size()) + " has " + std::to_string(f.size()) + " vertices");
-    Html_triangle t{};
-    for(std::size_t i = 0; i < 3; ++i) {
-      const auto v = static_cast<std::size_t>(f[i]);
-      if(v >= pts.size())
-        throw Invalid_input("face " + std::to_string(tris.size()) + " has the index " + std::to_string(v) +
-                            ", beyond the " + std::to_string(pts.size()) + " points");
-      t[i] = static_cast<std::uint32_t>(v);
-    }
-    tris.push_back(t);
-  }
-
-  const Adjacency_tables tables(tris, pts.size());
-  const std::vector<std::uint32_t> border = ::Soup_topology::internal::html_edge_vertices(tables, tables.border_edges());
-  const std::vector<std::uint32_t> non_manifold = ::Soup_topology::internal::html_edge_vertices(tables, tables.non_manifold_edges());
-  const std::vector<::Soup_topology::internal::Html_hole> holes = ::Soup_topology::internal::html_holes(pts, border);
-  const ::Soup_topology::internal::Html_display_mesh display =
-    ::Soup_topology::internal::html_display_mesh(pts, tris, border, non_manifold, content.display_triangle_limit);
-
-  // Coordinates are written relative to the center of the bounding box, in float.
-  Html_point origin{0, 0, 0};
-  if(!pts.empty()) {
-    Html_point low = pts.front(), high = pts.front();
-    for(const Html_point& p : pts)
-      for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
-    for(int c = 0; c < 3; ++c) origin[c] = (low[c] + high[c]) / 2;
-  }
-  std::vector<float> positions;
-  positions.reserve(3 * display.points.size());
-  for(const Html_point& p : display.points)
-    for(int c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - origin[c]));
-  std::vector<std::uint32_t> indices;
-  indices.reserve(3 * display.triangles.size());
-  for(const Html_triangle& t : display.triangles) indices.insert(indices.end(), t.begin(), t.end());
-
-  using ::Soup_topology::internal::html_json_number;
-  using ::Soup_topology::internal::html_json_string;
-  using ::Soup_topology::internal::html_script_safe;
-  os << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-     << "<title>" << ::Soup_topology::internal::html_escape(content.title) << "</title>\n"
-     << "<style>" << ::Soup_topology::internal::html_report_style() << "</style>\n</head>\n"
-     << "<body data-ready=\"false\">\n<div id=\"panel\"></div>\n<canvas id=\"view\"></canvas>\n"
-     << "<script type=\"application/json\" id=\"report-json\">" << html_script_safe(content.report_json)
-     << "</script>\n";
-
+  namespace in = ::Soup_topology::internal;
+  // The tables and the holes, on the full soup.
+  const in::Html_soup soup =
+    in::html_soup(points, triangles, in::Soup_np_helper<PointRange, NamedParameters>::get_point_map(np));
+  const Adjacency_tables tables(soup.triangles, soup.points.size());
+  const std::vector<std::uint32_t> border = in::html_edge_vertices(tables, tables.border_edges());
+  const std::vector<std::uint32_t> non_manifold = in::html_edge_vertices(tables, tables.non_manifold_edges());
+  const std::vector<in::Html_hole> holes = in::html_holes(soup.points, border);
+  // The display mesh, simplified above the limit.
+  const in::Html_display_mesh display =
+    in::html_display_mesh(soup.points, soup.triangles, border, non_manifold, content.display_triangle_limit);
+  // The markers and the page; coordinates are written relative to the center of the bounding
+  // box, in float.
+  const in::Html_point origin = in::html_center(soup.points);
+  in::write_html_page_head(os, content);
   os << "<script type=\"application/json\" id=\"viewer-data\">{";
-  os << "\"title\": " << html_script_safe(html_json_string(content.title));
-  os << ", \"origin\": [" << html_json_number(origin[0]) << ", " << html_json_number(origin[1]) << ", "
-     << html_json_number(origin[2]) << "]";
-  os << ", \"soup_triangles\": " << tris.size() << ", \"displayed_triangles\": " << display.triangles.size()
-     << ", \"display_triangle_limit\": " << content.display_triangle_limit
-     << ", \"decimated\": " << (display.decimated ? "true" : "false");
-  os << ", \"tolerance\": " << html_json_number(content.tolerance);
-  os << ", \"notes\": [";
-  for(std::size_t i = 0; i < content.notes.size(); ++i)
-    os << (i ? ", " : "") << html_script_safe(html_json_string(content.notes[i]));
-  os << "], \"table_header\": [";
-  for(std::size_t i = 0; i < content.table_header.size(); ++i)
-    os << (i ? ", " : "") << html_script_safe(html_json_string(content.table_header[i]));
-  os << "], \"table\": [";
-  for(std::size_t r = 0; r < content.table.size(); ++r) {
-    os << (r ? ", " : "") << '[';
-    for(std::size_t i = 0; i < content.table[r].size(); ++i)
-      os << (i ? ", " : "") << html_script_safe(html_json_string(content.table[r][i]));
-    os << ']';
-  }
-  os << "], \"gap_histogram\": [";
-  for(std::size_t i = 0; i < content.gap_histogram.size(); ++i) {
-    const Gap_histogram_bin& b = content.gap_histogram[i];
-    os << (i ? ", " : "") << "{\"lower\": " << html_json_number(b.lower) << ", \"upper\": " << html_json_number(b.upper)
-       << ", \"count\": " << b.count << '}';
-  }
-  os << "], \"gap_note\": " << html_script_safe(html_json_string(content.gap_note));
-  os << ", \"marker_counts\": {\"welded_vertices\": " << content.welded_vertices.count
-     << ", \"t_junction_splits\": " << content.t_junction_splits.count
-     << ", \"refused_welds\": " << content.refused_welds.count
-     << ", \"refused_splits\": " << content.refused_splits.count
-     << ", \"ambiguous_sites\": " << content.ambiguous_sites.count << '}';
-  os << ", \"markers\": {";
-  bool first = true;
-  ::Soup_topology::internal::write_html_sites(os, "welded_vertices", content.welded_vertices, origin, first);
-  ::Soup_topology::internal::write_html_sites(os, "t_junction_splits", content.t_junction_splits, origin, first);
-  ::Soup_topology::internal::write_html_sites(os, "refused_welds", content.refused_welds, origin, first);
-  ::Soup_topology::internal::write_html_sites(os, "refused_splits", content.refused_splits, origin, first);
-  ::Soup_topology::internal::write_html_sites(os, "ambiguous_sites", content.ambiguous_sites, origin, first);
-  os << "}, \"holes_total\": " << holes.size() << ", \"holes\": [";
-  constexpr std::size_t listed_holes = 500;
-  for(std::size_t i = 0; i < std::min(holes.size(), listed_holes); ++i) {
-    const ::Soup_topology::internal::Html_hole& h = holes[i];
-    os << (i ? ", " : "") << "{\"edges\": " << h.edges << ", \"length\": " << html_json_number(h.length)
-       << ", \"size\": " << html_json_number(h.size) << ", \"radius\": " << html_json_number(h.size / 2)
-       << ", \"center\": [" << html_json_number(h.center[0] - origin[0]) << ", "
-       << html_json_number(h.center[1] - origin[1]) << ", " << html_json_number(h.center[2] - origin[2]) << "]}";
-  }
-  os << "], \"positions\": \"" << ::Soup_topology::internal::html_base64(positions) << '"';
-  os << ", \"triangles\": \"" << ::Soup_topology::internal::html_base64(indices) << '"';
-  os << ", \"border_edges\": \"" << ::Soup_topology::internal::html_base64(display.border_edges) << '"';
-  os << ", \"non_manifold_edges\": \"" << ::Soup_topology::internal::html_base64(display.non_manifold_edges) << '"';
+  in::write_html_tables(os, content);
+  in::write_html_markers(os, content, origin);
+  in::write_html_holes(os, holes, origin);
+  in::write_html_display_mesh(os, display, soup.triangles.size(), content.display_triangle_limit, origin);
   os << "}</script>\n";
-
-  os << "<script type=\"text/plain\" id=\"viewer-license\">\n";
-  if(content.viewer_script.empty())
-    for(const char* part : ::Soup_topology::internal::html_report_viewer_license) os << part;
-  else
-    os << html_script_safe(content.viewer_license);
-  os << "</script>\n<script type=\"module\">\n";
-  if(content.viewer_script.empty())
-    for(const char* part : ::Soup_topology::internal::html_report_viewer_script) os << part;
-  else
-    os << html_script_safe(content.viewer_script);
-  os << "</script>\n</body>\n</html>\n";
+  in::write_html_page_scripts(os, content);
 }
 
 } // namespace IO

@@ -120,6 +120,87 @@ inline std::vector<Html_hole> html_holes(const std::vector<Html_point>& points, 
   return holes;
 }
 
+/// the vertices of a soup kept as they are in the display mesh: those of every triangle with a
+/// vertex on a problem edge (`border`, `non_manifold`), or none if those triangles alone are more
+/// than half of `limit`.
+inline std::vector<char> html_kept_vertices(std::size_t number_of_points, const std::vector<Html_triangle>& triangles,
+                                            const std::vector<std::uint32_t>& border,
+                                            const std::vector<std::uint32_t>& non_manifold, std::size_t limit)
+{
+  std::vector<char> on_problem_edge(number_of_points, 0), kept(number_of_points, 0);
+  for(std::uint32_t v : border) on_problem_edge[v] = 1;
+  for(std::uint32_t v : non_manifold) on_problem_edge[v] = 1;
+  std::size_t kept_triangles = 0;
+  for(const Html_triangle& t : triangles)
+    if(on_problem_edge[t[0]] || on_problem_edge[t[1]] || on_problem_edge[t[2]]) {
+      ++kept_triangles;
+      for(std::uint32_t v : t) kept[v] = 1;
+    }
+  if(kept_triangles > limit / 2) kept.assign(number_of_points, 0);
+  return kept;
+}
+
+/// the lower corner of the bounding box of `points` (in `low`) and the side of the first grid
+/// cell tried: a surface of area A cut by cells of side h keeps about 2 A / h^2 triangles.
+inline double html_first_cell_size(const std::vector<Html_point>& points, const std::vector<Html_triangle>& triangles,
+                                   std::size_t limit, Html_point& low)
+{
+  Html_point high{};
+  for(int c = 0; c < 3; ++c) {
+    low[c] = std::numeric_limits<double>::infinity();
+    high[c] = -std::numeric_limits<double>::infinity();
+  }
+  for(const Html_point& p : points)
+    for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
+  double area = 0;
+  for(const Html_triangle& t : triangles) {
+    const Html_point &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
+    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  const double diagonal = std::max(html_distance(low, high), std::numeric_limits<double>::min());
+  return std::max(std::sqrt(2.2 * area / static_cast<double>(limit)), diagonal * 1e-6);
+}
+
+/// one vertex clustering on a grid of cells of side `cell` from `low`: every vertex not `kept`
+/// goes to the cluster of its cell, a kept vertex to a cluster of its own. Fills `cluster` (the
+/// cluster of each vertex), `display.triangles` (those with three distinct clusters) and
+/// `display.points` (the centroid of each cluster).
+inline void html_cluster_vertices(const std::vector<Html_point>& points, const std::vector<Html_triangle>& triangles,
+                                  const std::vector<char>& kept, const Html_point& low, double cell,
+                                  std::vector<std::uint32_t>& cluster, Html_display_mesh& display)
+{
+  std::unordered_map<std::uint64_t, std::uint32_t> cell_cluster;
+  std::vector<Html_point> sums;
+  std::vector<std::uint32_t> members;
+  const auto grid = [&](double x, int c) {
+    return static_cast<std::uint64_t>(std::min(std::floor((x - low[c]) / cell), 2097151.0)) & 0x1FFFFF;
+  };
+  cluster.resize(points.size());
+  for(std::size_t v = 0; v < points.size(); ++v) {
+    const Html_point& p = points[v];
+    std::uint32_t id = static_cast<std::uint32_t>(sums.size());
+    if(!kept[v]) {
+      const std::uint64_t key = grid(p[0], 0) | (grid(p[1], 1) << 21) | (grid(p[2], 2) << 42);
+      id = cell_cluster.emplace(key, id).first->second;
+    }
+    if(id == sums.size()) { sums.push_back({0, 0, 0}); members.push_back(0); }
+    cluster[v] = id;
+    for(int c = 0; c < 3; ++c) sums[id][c] += p[c];
+    ++members[id];
+  }
+  display.triangles.clear();
+  for(const Html_triangle& t : triangles) {
+    const Html_triangle d{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
+    if(d[0] != d[1] && d[1] != d[2] && d[2] != d[0]) display.triangles.push_back(d);
+  }
+  display.points.resize(sums.size());
+  for(std::size_t i = 0; i < sums.size(); ++i)
+    for(int c = 0; c < 3; ++c) display.points[i][c] = members[i] ? sums[i][c] / members[i] : 0;
+}
+
 /// the display mesh of a soup: the soup itself when it has at most `limit` triangles; otherwise
 /// a vertex clustering on a grid, coarsened until at most `limit` triangles remain. The vertices
 /// of the triangles that touch a border or non-manifold edge are kept as they are (unless those
@@ -138,73 +219,13 @@ inline Html_display_mesh html_display_mesh(const std::vector<Html_point>& points
     return display;
   }
   display.decimated = true;
-
-  // The kept vertices: those of every triangle with a vertex on a problem edge.
-  std::vector<char> on_problem_edge(points.size(), 0), kept(points.size(), 0);
-  for(std::uint32_t v : border) on_problem_edge[v] = 1;
-  for(std::uint32_t v : non_manifold) on_problem_edge[v] = 1;
-  std::size_t kept_triangles = 0;
-  for(const Html_triangle& t : triangles)
-    if(on_problem_edge[t[0]] || on_problem_edge[t[1]] || on_problem_edge[t[2]]) {
-      ++kept_triangles;
-      for(std::uint32_t v : t) kept[v] = 1;
-    }
-  if(kept_triangles > limit / 2) kept.assign(points.size(), 0);
-
-  double area = 0;
-  Html_point low{}, high{};
-  for(int c = 0; c < 3; ++c) {
-    low[c] = std::numeric_limits<double>::infinity();
-    high[c] = -std::numeric_limits<double>::infinity();
-  }
-  for(const Html_point& p : points)
-    for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
-  for(const Html_triangle& t : triangles) {
-    const Html_point &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
-    const double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-    const double w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  }
-  // A surface of area A cut by cells of side h keeps about 2 A / h^2 triangles.
-  const double diagonal = std::max(html_distance(low, high), std::numeric_limits<double>::min());
-  double cell = std::max(std::sqrt(2.2 * area / static_cast<double>(limit)), diagonal * 1e-6);
-
-  std::vector<std::uint32_t> cluster(points.size());
+  const std::vector<char> kept = html_kept_vertices(points.size(), triangles, border, non_manifold, limit);
+  Html_point low{};
+  double cell = html_first_cell_size(points, triangles, limit, low);
+  std::vector<std::uint32_t> cluster;
   for(int attempt = 0; attempt < 40; ++attempt, cell *= 1.3) {
-    std::unordered_map<std::uint64_t, std::uint32_t> cell_cluster;
-    std::vector<Html_point> sums;
-    std::vector<std::uint32_t> members;
-    const auto grid = [&](double x, int c) {
-      return static_cast<std::uint64_t>(std::min(std::floor((x - low[c]) / cell), 2097151.0)) & 0x1FFFFF;
-    };
-    for(std::size_t v = 0; v < points.size(); ++v) {
-      const Html_point& p = points[v];
-      std::uint32_t id;
-      if(kept[v]) {
-        id = static_cast<std::uint32_t>(sums.size());
-        sums.push_back({0, 0, 0});
-        members.push_back(0);
-      } else {
-        const std::uint64_t key = grid(p[0], 0) | (grid(p[1], 1) << 21) | (grid(p[2], 2) << 42);
-        const auto inserted = cell_cluster.emplace(key, static_cast<std::uint32_t>(sums.size()));
-        id = inserted.first->second;
-        if(inserted.second) { sums.push_back({0, 0, 0}); members.push_back(0); }
-      }
-      cluster[v] = id;
-      for(int c = 0; c < 3; ++c) sums[id][c] += p[c];
-      ++members[id];
-    }
-    display.triangles.clear();
-    for(const Html_triangle& t : triangles) {
-      const Html_triangle d{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
-      if(d[0] != d[1] && d[1] != d[2] && d[2] != d[0]) display.triangles.push_back(d);
-    }
-    if(display.triangles.size() > limit && attempt + 1 < 40) continue;
-    display.points.resize(sums.size());
-    for(std::size_t i = 0; i < sums.size(); ++i)
-      for(int c = 0; c < 3; ++c) display.points[i][c] = members[i] ? sums[i][c] / members[i] : 0;
-    break;
+    html_cluster_vertices(points, triangles, kept, low, cell, cluster, display);
+    if(display.triangles.size() <= limit) break;
   }
   const auto map_edges = [&](const std::vector<std::uint32_t>& edges, std::vector<std::uint32_t>& out) {
     for(std::size_t e = 0; e + 1 < edges.size(); e += 2)

@@ -2,10 +2,13 @@
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
 // The worker behind `Soup_topology::split_t_junctions()`: one named step per stage of the
-// T-junction repair. Included by `Soup_topology/split_t_junctions.h` after `Split_report`.
+// T-junction repair. Included by `Soup_topology/split_t_junctions.h` after `Split_report` and
+// `Default_split_visitor`.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_SPLIT_T_JUNCTIONS_WORKER_H
 #define SOUP_TOPOLOGY_INTERNAL_SPLIT_T_JUNCTIONS_WORKER_H
+
+#include <Soup_topology/split_t_junctions.h>
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Octree.h>
@@ -37,7 +40,8 @@ struct Pending_edge
 };
 
 /// Splits the T-junctions of a soup given by its points and its tables; `Report` is
-/// `Split_report`. The steps, in the order `run()` takes them:
+/// `Split_report`, `Visitor` a model of the split visitor told of each event (with
+/// `Default_split_visitor` nothing is recorded for it). The steps, in the order `run()` takes them:
 /// 1. `index_border_vertices()`: the border vertices, an octree over them and, for dense
 ///    clusters, a tolerance grid;
 /// 2. `collect_claims()`: per border edge, the vertices near it (`find_vertices_near_edge()`),
@@ -46,7 +50,7 @@ struct Pending_edge
 /// 4. `split_edges()`: per edge in a geometric order, the vertices ordered along it
 ///    (`order_along_edge()`), the edge located (`locate_border_edge()`), the fan checked
 ///    (`drop_vertices_breaking_the_fan()`) and the triangle split (`split_along_edge()`).
-template <class Kernel, class Report>
+template <class Kernel, class Report, class Visitor>
 class T_junction_splitter
 {
 public:
@@ -54,9 +58,11 @@ public:
   using FT = typename Kernel::FT;
   using size_type = Adjacency_tables::size_type;
 
-  /// `points` all points of the soup, `eps` the (checked) absolute tolerance.
-  T_junction_splitter(std::vector<Point>&& points, Adjacency_tables& tables, const Kernel& kernel, const FT& eps)
-    : points_(std::move(points)), tables_(tables), kernel_(kernel), eps_(eps), eps2_(eps * eps),
+  /// `points` all points of the soup, `eps` the (checked) absolute tolerance, `visitor` told of
+  /// each split, refusal and ambiguous vertex.
+  T_junction_splitter(std::vector<Point>&& points, Adjacency_tables& tables, const Kernel& kernel, const FT& eps,
+                      Visitor& visitor)
+    : points_(std::move(points)), tables_(tables), visitor_(visitor), kernel_(kernel), eps_(eps), eps2_(eps * eps),
       four_eps2_(4 * eps2_), eps2d_(CGAL::to_double(eps2_)),
       compare_sq_(kernel.compare_squared_distance_3_object()),
       compare_distance_(kernel.compare_distance_3_object()), less_xyz_(kernel.less_xyz_3_object()),
@@ -90,6 +96,8 @@ private:
   using Tree_traits = Kernel_with_near_end_shortcut<Kernel>;
   using Tree = Octree<Tree_traits>;
   static constexpr std::uint32_t not_border = static_cast<std::uint32_t>(-1);
+  // Whether the decisions of step 2 keep the vertices they refuse or find ambiguous, for the visitor.
+  static constexpr bool tells_visitor = !std::is_same<Visitor, Default_split_visitor>::value;
 
   const Point& point(size_type v) const { return points_[v]; }
 
@@ -143,12 +151,15 @@ private:
     }
   }
 
-  // What the decisions of step 2 found: the claims and the counts they add to the report.
+  // What the decisions of step 2 found: the claims and the counts they add to the report, and,
+  // for a visitor, the (vertex, edge) pairs refused for an overlap or found ambiguous.
   struct Decisions
   {
     std::vector<std::pair<size_type, std::uint32_t>> claims;
     std::size_t refused_overlap = 0;
     std::size_t ambiguous = 0;
+    std::vector<std::pair<size_type, std::uint32_t>> overlaps;
+    std::vector<std::pair<size_type, std::uint32_t>> ambiguous_pairs;
   };
 
   // Step 2. Candidate (edge, vertex) pairs: every vertex near a border edge is decided. The edges
@@ -181,6 +192,8 @@ private:
         all.claims.insert(all.claims.end(), d.claims.begin(), d.claims.end());
         all.refused_overlap += d.refused_overlap;
         all.ambiguous += d.ambiguous;
+        all.overlaps.insert(all.overlaps.end(), d.overlaps.begin(), d.overlaps.end());
+        all.ambiguous_pairs.insert(all.ambiguous_pairs.end(), d.ambiguous_pairs.begin(), d.ambiguous_pairs.end());
       }
     } else {
       decide_edges(0, border_.size(), all);
@@ -188,6 +201,9 @@ private:
     claims_.insert(claims_.end(), all.claims.begin(), all.claims.end());
     report_.refused_overlap += all.refused_overlap;
     report_.ambiguous += all.ambiguous;
+    for(const auto& [c, k] : all.overlaps)
+      visitor_.on_split_refusal(c, pending_[k].a, pending_[k].b, Split_refusal_reason::OVERLAP);
+    for(const auto& [c, k] : all.ambiguous_pairs) visitor_.on_ambiguous_t_junction(c, pending_[k].a, pending_[k].b);
   }
 
   // The positions in `border_vertices_` of the border vertices within the tolerance of [a,b].
@@ -231,9 +247,15 @@ private:
     const bool close_to_b = within_twice_the_tolerance(c, b) && !share_triangle(c, b);
     bool along = false, overlap_only = false;
     classify_border_edges_of(c, e.triangle, a, b, apex, close_to_a, close_to_b, along, overlap_only);
-    if(along) out.claims.emplace_back(c, static_cast<std::uint32_t>(k));
-    else if(overlap_only) ++out.refused_overlap;
-    else if(close_to_a || close_to_b) ++out.ambiguous;
+    if(along) {
+      out.claims.emplace_back(c, static_cast<std::uint32_t>(k));
+    } else if(overlap_only) {
+      ++out.refused_overlap;
+      if constexpr(tells_visitor) out.overlaps.emplace_back(c, static_cast<std::uint32_t>(k));
+    } else if(close_to_a || close_to_b) {
+      ++out.ambiguous;
+      if constexpr(tells_visitor) out.ambiguous_pairs.emplace_back(c, static_cast<std::uint32_t>(k));
+    }
   }
 
   // Looks for a border edge of c, in another triangle than `t`, running along [a,b]: `along` if
@@ -291,7 +313,10 @@ private:
           point(c), point(pending_[e].a), point(pending_[e].b), point(pending_[best].a), point(pending_[best].b));
         if(r == CGAL::SMALLER || (r == CGAL::EQUAL && edge_less(e, best))) best = e;
       }
-      if(j - i > 1) ++report_.ambiguous;
+      if(j - i > 1) {
+        ++report_.ambiguous;
+        visitor_.on_ambiguous_t_junction(c, pending_[best].a, pending_[best].b);
+      }
       pending_[best].on_edge.push_back(c);
       i = j;
     }
@@ -367,6 +392,8 @@ private:
         sign_of_normal_dot(point(pe.a), point(pe.b), point(apex), p, q, point(apex)) != CGAL::POSITIVE;
       if(!degenerate && !flipped) { left = right; continue; }
       if(degenerate) ++report_.refused_degenerate; else ++report_.refused_flip;
+      visitor_.on_split_refusal(chain[right != last ? right : left], pe.a, pe.b,
+                                degenerate ? Split_refusal_reason::DEGENERATE : Split_refusal_reason::FLIP);
       if(right != last) {
         dropped[right] = 1;
         next[left] = next[right];
@@ -395,12 +422,14 @@ private:
       changed_.push_back(t);
       changed_.push_back(t_new);
       ++report_.split_triangles;
+      visitor_.on_split(c, pe.a, pe.b);
       t = t_new; // the rest of the edge, (c, b), is edge i of the new triangle
     }
   }
 
   const std::vector<Point> points_; // all points, read once (a readable map may return them by value)
   Adjacency_tables& tables_;
+  Visitor& visitor_;
   const Kernel kernel_;
   const FT eps_, eps2_, four_eps2_;
   const double eps2d_;
