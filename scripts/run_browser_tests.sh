@@ -55,14 +55,14 @@ run_check() {
 xz -dc data/pig.stl.xz > "$work/pig.stl"
 "$tool" repair "$work/pig.stl" -o "$work/pig_repaired.off" --tolerance 0.3 --json --html "$work/pig.html" > "$work/pig.json"
 run_check "pig, tolerance 0.3 (closed)" --page "$work/pig.html" --json "$work/pig.json" \
-  --screenshot "$work/pig.png" --red no
+  --screenshot "$work/pig.png" --red no --markers yes
 
 # ALSTOM_TEST4: left open at tolerance 0.1.
 if [ -f "$data/cad/ALSTOM_TEST4.off" ]; then
   "$tool" repair "$data/cad/ALSTOM_TEST4.off" -o "$work/alstom_repaired.off" --tolerance 0.1 --json \
     --html "$work/alstom.html" > "$work/alstom.json"
   run_check "ALSTOM_TEST4, tolerance 0.1 (open)" --page "$work/alstom.html" --json "$work/alstom.json" \
-    --screenshot "$work/alstom.png" --red yes
+    --screenshot "$work/alstom.png" --red yes --markers yes
 else
   echo "== ALSTOM_TEST4 SKIPPED: $data/cad/ALSTOM_TEST4.off not found"
   skipped=$((skipped + 1))

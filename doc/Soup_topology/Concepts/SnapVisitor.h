@@ -6,7 +6,10 @@ The visitor of `snap_vertices()` and `reconstruct_topology()`, given with
 `CGAL::parameters::visitor(v)` (a copy) or `CGAL::parameters::visitor(std::ref(v))` (the caller's
 object). `reconstruct_topology()` calls it for every weld and every refused weld of every round,
 with the indices of its input points (a point merged by the exact weld is known by the first of
-the equal points; for a mesh, the index of the vertex in the order of `vertices(mesh)`).
+the equal points; for a mesh, the index of the vertex in the order of `vertices(mesh)`). A
+visitor of `reconstruct_topology()` may also be a `SplitVisitor` (its members are then called by
+the T-junction step), and may have `v.on_ambiguous_site(vertex)`, called once for every ambiguous
+site of the weld, named by its smallest point.
 
 | Valid expression | Meaning |
 |---|---|
@@ -15,6 +18,7 @@ the equal points; for a mesh, the index of the vertex in the order of `vertices(
 
 \cgalHasModelsBegin
 \cgalHasModels{`Soup_topology::Default_snap_visitor`}
+\cgalHasModels{`Soup_topology::IO::Html_report_site_recorder`}
 \cgalHasModelsEnd
 */
 class SnapVisitor {};
