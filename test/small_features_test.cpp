@@ -442,12 +442,49 @@ TEST(SmallFeaturesDegenerate, RealDefectFiles)
   }
 }
 
-// The pipeline flips them away under the default policy, and leaves them under REFUSE.
-TEST(SmallFeaturesDegenerate, ReconstructTopologyFlipsThemUnderCollapse)
+// OpenSCAD's back-to-back files: two degenerate triangles glued to each other (the same
+// corners in opposite orders, or along their long edge), each beside non-degenerate triangles
+// along its two short edges. No flip applies; both are covered and removed.
+TEST(SmallFeaturesDegenerate, BackToBackTrianglesAreRemovedWhereTheOthersCoverThem)
 {
   for(const char* file :
-      {"real_defects/admesh/conveyor/nearby-bad.stl.xz", "real_defects/admesh/conveyor/fill-holes-bad.stl.xz",
-       "real_defects/openscad/issue945f.stl", "real_defects/openscad/issue1580-zero-area-triangle.stl"}) {
+      {"real_defects/openscad/issue1580-back-to-back.stl", "real_defects/openscad/issue1580-back-to-back2.stl"}) {
+    SCOPED_TRACE(file);
+    auto [points, triangles] = load<Point>(file);
+    ASSERT_EQ(count_degenerate(points, triangles), 2u);
+    const double area = total_area(points, triangles);
+    const std::size_t n = triangles.size();
+    EXPECT_EQ(ST::internal::flip_degenerate_triangles(points, triangles, Epick()).flipped, 0u);
+    EXPECT_EQ(ST::internal::remove_covered_degenerate_triangles(points, triangles, Epick()), 2u);
+    EXPECT_EQ(triangles.size(), n - 2);
+    EXPECT_EQ(count_degenerate(points, triangles), 0u);
+    EXPECT_NEAR(total_area(points, triangles), area, 1e-12 * area);
+  }
+}
+
+TEST(SmallFeaturesDegenerate, AnUncoveredDegenerateTriangleIsKept)
+{
+  // (0, 1, 2) with 2 on [0,1]; only [0,2] is an edge of another triangle: [2,1] and [0,1]
+  // are not covered, so removing it would remove the segment ]2,1].
+  std::vector<Point> points = {Point(0, 0, 0), Point(2, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_EQ(ST::internal::remove_covered_degenerate_triangles(points, triangles, Epick()), 0u);
+  EXPECT_EQ(triangles.size(), 2u);
+}
+
+// The pipeline flips them away, or removes them where that is covered, under the default policy,
+// and leaves them under REFUSE. No point moves, and no file is left more open than it was.
+TEST(SmallFeaturesDegenerate, ReconstructTopologyResolvesThemUnderCollapse)
+{
+  for(const char* file :
+      {"real_defects/admesh/conveyor/nearby-bad.stl.xz", "real_defects/admesh/conveyor/nearby-good.stl.xz",
+       "real_defects/admesh/conveyor/fill-holes-bad.stl.xz", "real_defects/admesh/conveyor/fill-holes-good.stl.xz",
+       "real_defects/admesh/conveyor/normal-directions-bad.stl.xz",
+       "real_defects/admesh/conveyor/normal-directions-good.stl.xz",
+       "real_defects/admesh/conveyor/remove-unconnected-bad.stl.xz",
+       "real_defects/admesh/conveyor/remove-unconnected-good.stl.xz", "real_defects/openscad/issue945f.stl",
+       "real_defects/openscad/issue1580-zero-area-triangle.stl", "real_defects/openscad/issue1580-back-to-back.stl",
+       "real_defects/openscad/issue1580-back-to-back2.stl"}) {
     SCOPED_TRACE(file);
     auto [points, triangles] = load<Point>(file);
     const std::size_t before = count_degenerate(points, triangles);
@@ -455,13 +492,33 @@ TEST(SmallFeaturesDegenerate, ReconstructTopologyFlipsThemUnderCollapse)
     auto refused_points = points;
     auto refused_triangles = triangles;
     const ST::Reconstruction_report collapsed = ST::reconstruct_topology(points, triangles);
-    EXPECT_EQ(collapsed.flipped_degenerate_triangles, before);
+    EXPECT_EQ(collapsed.flipped_degenerate_triangles + collapsed.removed_degenerate_triangles, before);
     EXPECT_EQ(collapsed.degenerate_triangles_after, 0u);
     EXPECT_EQ(count_degenerate(points, triangles), 0u);
+    EXPECT_EQ(collapsed.max_displacement, 0.0);
+    EXPECT_LE(collapsed.border_edges_after, collapsed.border_edges_before);
+    EXPECT_LE(collapsed.non_manifold_edges_after, collapsed.non_manifold_edges_before);
     const ST::Reconstruction_report refused = ST::reconstruct_topology(
       refused_points, refused_triangles, ST::parameters::small_features(ST::Small_features::REFUSE));
     EXPECT_EQ(refused.flipped_degenerate_triangles, 0u);
+    EXPECT_EQ(refused.removed_degenerate_triangles, 0u);
     EXPECT_EQ(refused.degenerate_triangles_after, before);
+  }
+}
+
+// The back-to-back files come out closed and manifold: the pyramid the triangles make.
+TEST(SmallFeaturesDegenerate, BackToBackFilesComeOutClosed)
+{
+  for(const char* file :
+      {"real_defects/openscad/issue1580-back-to-back.stl", "real_defects/openscad/issue1580-back-to-back2.stl"}) {
+    SCOPED_TRACE(file);
+    auto [points, triangles] = load<Point>(file);
+    const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles);
+    EXPECT_EQ(r.removed_degenerate_triangles, 2u);
+    EXPECT_EQ(r.border_edges_after, 0u);
+    EXPECT_EQ(r.non_manifold_edges_after, 0u);
+    EXPECT_EQ(r.non_manifold_vertices_after, 0u);
+    EXPECT_EQ(r.degenerate_triangles_after, 0u);
   }
 }
 

@@ -69,6 +69,7 @@ struct Reconstruction_report
   std::size_t small_features_resolved = 0;  ///< `Small_features::COLLAPSE`: pairs of vertices of one triangle within the tolerance merged
   std::size_t small_feature_collapsed_triangles = 0; ///< `Small_features::COLLAPSE`: triangles removed because two of their corners merged
   std::size_t flipped_degenerate_triangles = 0; ///< `Small_features::COLLAPSE`: degenerate input triangles (collinear corners) removed by an edge flip
+  std::size_t removed_degenerate_triangles = 0; ///< `Small_features::COLLAPSE`: degenerate input triangles that no flip removes, removed where the other triangles cover them
   std::size_t degenerate_triangles_after = 0;   ///< triangles of the result with collinear corners
   // T-junctions, summed over the rounds.
   std::size_t t_junctions = 0;              ///< vertices found on the interior of a border edge
@@ -250,11 +251,14 @@ public:
   }
 
   /// removes the degenerate triangles (three distinct collinear corners) by edge flips, where
-  /// the triangle across the longest edge allows it (`flip_degenerate_triangles()`): the surface
-  /// does not move. Under `Small_features::COLLAPSE`, before the tables are built.
+  /// the triangle across the longest edge allows it (`flip_degenerate_triangles()`), then the
+  /// degenerate triangles left whose points the other triangles cover
+  /// (`remove_covered_degenerate_triangles()`): the surface does not move. Under
+  /// `Small_features::COLLAPSE`, before the tables are built.
   void flip_degenerate_triangles_away()
   {
     report_.flipped_degenerate_triangles = flip_degenerate_triangles(pts_, triangles_, gt_).flipped;
+    report_.removed_degenerate_triangles = remove_covered_degenerate_triangles(pts_, triangles_, gt_);
   }
 
   /// builds the adjacency tables and records what they show before the repair.
