@@ -14,13 +14,19 @@
 // their corners and the points shuffled), and the result is checked against the repair of the
 // unperturbed soup.
 //
-// Usage: robustness_experiment [OUT.csv] [--quick]
+// Usage: robustness_experiment [OUT.csv] [--quick] [--small-features collapse|refuse]
 // One CSV row per mesh x perturbation (3 random rotations per theta, and float32) x kernel x
-// tolerance; the runs that are not correct are listed on stdout. A run is correct if the result
+// tolerance; the runs that are not correct are listed on stdout. `--small-features` chooses the
+// policy of `reconstruct_topology()` for two vertices of one triangle within the tolerance
+// (default: collapse, the library's default); the last columns of the CSV name it and count the
+// collapsed triangles and the welds refused because a collapse would leave the surface. A run is correct if the result
 // has, in terms of the model's positions, exactly the oriented triangles of the reference (the
 // unperturbed soup repaired with Epeck), no non-manifold edge, no degenerate or flipped triangle,
-// and the same geometric triangles when the input is shuffled. Times: the smaller of the two
-// runs, in milliseconds, for `reconstruct_topology()` alone.
+// and the same geometric triangles when the input is shuffled. A run is valid if it is all that
+// but for the first condition, with the border edges of the reference: a closed, manifold,
+// unflipped, order-independent result that may have fewer triangles (a collapse of features
+// smaller than the tolerance). Times: the smaller of the two runs, in milliseconds, for
+// `reconstruct_topology()` alone.
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/internal/exact_signs.h>
@@ -203,7 +209,8 @@ struct Output
 };
 
 template <class Kernel>
-Output run(const std::vector<Coordinates>& coordinates_in, const std::vector<Triangle>& triangles_in, double eps)
+Output run(const std::vector<Coordinates>& coordinates_in, const std::vector<Triangle>& triangles_in, double eps,
+           ST::Small_features policy)
 {
   using P = typename Kernel::Point_3;
   using FT = typename Kernel::FT;
@@ -213,7 +220,8 @@ Output run(const std::vector<Coordinates>& coordinates_in, const std::vector<Tri
   std::vector<Triangle> triangles = triangles_in;
   Output out;
   const auto start = std::chrono::steady_clock::now();
-  out.report = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(FT(eps)));
+  out.report = ST::reconstruct_topology(
+    points, triangles, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(FT(eps))));
   const auto stop = std::chrono::steady_clock::now();
   out.milliseconds = std::chrono::duration<double, std::milli>(stop - start).count();
   out.points.reserve(points.size());
@@ -336,7 +344,8 @@ struct Row_writer
     csv << "mesh,input_triangles,perturbation,seed,theta_deg,kernel,tolerance_factor,relative_tolerance,"
            "relative_displacement,closed,border_edges,non_manifold_edges,components,degenerate,flipped,"
            "inconsistent_edges,ambiguous_sites,snapped,split_triangles,refused_welds,refused_splits,"
-           "same_as_reference,order_independent,correct,time_ms\n";
+           "same_as_reference,order_independent,correct,time_ms,small_features,collapsed_triangles,"
+           "refused_uncovered_collapse,valid\n";
   }
 };
 
@@ -346,10 +355,22 @@ int main(int argc, char** argv)
 {
   std::string out_path = "results.csv";
   bool quick = false;
+  ST::Small_features policy = ST::Small_features::COLLAPSE;
   for(int i = 1; i < argc; ++i) {
-    if(std::strcmp(argv[i], "--quick") == 0) quick = true;
-    else out_path = argv[i];
+    if(std::strcmp(argv[i], "--quick") == 0) {
+      quick = true;
+    } else if(std::strcmp(argv[i], "--small-features") == 0 && i + 1 < argc) {
+      const std::string value = argv[++i];
+      if(value != "collapse" && value != "refuse") {
+        std::fprintf(stderr, "robustness_experiment: --small-features takes collapse or refuse\n");
+        return 2;
+      }
+      policy = value == "collapse" ? ST::Small_features::COLLAPSE : ST::Small_features::REFUSE;
+    } else {
+      out_path = argv[i];
+    }
   }
+  const char* policy_name = policy == ST::Small_features::COLLAPSE ? "collapse" : "refuse";
   try {
     std::vector<Model> models;
     models.push_back(load_model("clean/elephant.off", "elephant", 0));
@@ -371,7 +392,7 @@ int main(int argc, char** argv)
       // The reference: the unperturbed soup repaired with exact constructions and a tiny tolerance.
       std::vector<Coordinates> base_coordinates;
       for(const Point& p : base.points) base_coordinates.push_back(coordinates(p));
-      const Output ref = run<Epeck>(base_coordinates, base.triangles, 1e-9 * model.diagonal);
+      const Output ref = run<Epeck>(base_coordinates, base.triangles, 1e-9 * model.diagonal, policy);
       std::map<Coordinates, std::size_t> base_ids;
       for(std::size_t i = 0; i < base_coordinates.size(); ++i) base_ids.emplace(base_coordinates[i], base.id[i]);
       std::vector<std::size_t> ref_id(ref.points.size());
@@ -403,14 +424,14 @@ int main(int argc, char** argv)
             const double eps = factor * pert.largest_displacement;
             Output a, b;
             switch(kernel) {
-              case 0: a = run<Double_kernel>(pert.points, base.triangles, eps);
-                      b = run<Double_kernel>(shuffled_points, shuffled_triangles, eps); break;
-              case 1: a = run<Epick>(pert.points, base.triangles, eps);
-                      b = run<Epick>(shuffled_points, shuffled_triangles, eps); break;
-              case 2: a = run<Epeck>(pert.points, base.triangles, eps);
-                      b = run<Epeck>(shuffled_points, shuffled_triangles, eps); break;
-              default: a = run<Rational_kernel>(pert.points, base.triangles, eps);
-                       b = run<Rational_kernel>(shuffled_points, shuffled_triangles, eps); break;
+              case 0: a = run<Double_kernel>(pert.points, base.triangles, eps, policy);
+                      b = run<Double_kernel>(shuffled_points, shuffled_triangles, eps, policy); break;
+              case 1: a = run<Epick>(pert.points, base.triangles, eps, policy);
+                      b = run<Epick>(shuffled_points, shuffled_triangles, eps, policy); break;
+              case 2: a = run<Epeck>(pert.points, base.triangles, eps, policy);
+                      b = run<Epeck>(shuffled_points, shuffled_triangles, eps, policy); break;
+              default: a = run<Rational_kernel>(pert.points, base.triangles, eps, policy);
+                       b = run<Rational_kernel>(shuffled_points, shuffled_triangles, eps, policy); break;
             }
             const Checks c = check(a, ids, base, reference);
             const bool order_independent = canonical_geometry(a) == canonical_geometry(b);
@@ -421,6 +442,10 @@ int main(int argc, char** argv)
             const bool correct = c.same_as_reference && order_independent && c.degenerate == 0 && c.flipped == 0 &&
                                  c.inconsistent_edges == reference_inconsistent_edges &&
                                  r.non_manifold_edges_after == 0 && c.unknown_points == 0;
+            const bool valid = order_independent && c.degenerate == 0 && c.flipped == 0 &&
+                               c.inconsistent_edges == reference_inconsistent_edges &&
+                               r.non_manifold_edges_after == 0 && c.unknown_points == 0 &&
+                               r.border_edges_after == ref.report.border_edges_after;
             std::ostringstream row;
             row.precision(3);
             row << model.name << ',' << base.triangles.size() << ',' << pert.kind << ',' << pert.seed << ','
@@ -432,15 +457,18 @@ int main(int argc, char** argv)
                 << r.refused_splits << ',' << (c.same_as_reference ? 1 : 0) << ',' << (order_independent ? 1 : 0)
                 << ',' << (correct ? 1 : 0) << ',';
             row.precision(4);
-            row << std::min(a.milliseconds, b.milliseconds) << '\n';
+            row << std::min(a.milliseconds, b.milliseconds) << ',' << policy_name << ','
+                << r.small_feature_collapsed_triangles << ',' << r.refused_uncovered_collapse << ',' << (valid ? 1 : 0)
+                << '\n';
             writer.csv << row.str();
             writer.csv.flush();
             if(!correct)
               std::printf("  not correct: %s %s seed %u theta=%g %s x%g: border %zu, nm %zu, degenerate %zu, flipped %zu, "
-                          "inconsistent %zu, same %d, order-independent %d\n",
+                          "inconsistent %zu, same %d, order-independent %d, collapsed %zu, valid %d\n",
                           model.name.c_str(), pert.kind.c_str(), pert.seed, pert.theta, kernels[kernel], factor,
                           r.border_edges_after, r.non_manifold_edges_after, c.degenerate, c.flipped,
-                          c.inconsistent_edges, c.same_as_reference ? 1 : 0, order_independent ? 1 : 0);
+                          c.inconsistent_edges, c.same_as_reference ? 1 : 0, order_independent ? 1 : 0,
+                          r.small_feature_collapsed_triangles, valid ? 1 : 0);
           }
       }
       std::printf("  %s done after %.1f s\n", model.name.c_str(),

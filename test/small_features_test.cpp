@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -442,12 +443,49 @@ TEST(SmallFeaturesDegenerate, RealDefectFiles)
   }
 }
 
-// The pipeline flips them away under the default policy, and leaves them under REFUSE.
-TEST(SmallFeaturesDegenerate, ReconstructTopologyFlipsThemUnderCollapse)
+// OpenSCAD's back-to-back files: two degenerate triangles glued to each other (the same
+// corners in opposite orders, or along their long edge), each beside non-degenerate triangles
+// along its two short edges. No flip applies; both are covered and removed.
+TEST(SmallFeaturesDegenerate, BackToBackTrianglesAreRemovedWhereTheOthersCoverThem)
 {
   for(const char* file :
-      {"real_defects/admesh/conveyor/nearby-bad.stl.xz", "real_defects/admesh/conveyor/fill-holes-bad.stl.xz",
-       "real_defects/openscad/issue945f.stl", "real_defects/openscad/issue1580-zero-area-triangle.stl"}) {
+      {"real_defects/openscad/issue1580-back-to-back.stl", "real_defects/openscad/issue1580-back-to-back2.stl"}) {
+    SCOPED_TRACE(file);
+    auto [points, triangles] = load<Point>(file);
+    ASSERT_EQ(count_degenerate(points, triangles), 2u);
+    const double area = total_area(points, triangles);
+    const std::size_t n = triangles.size();
+    EXPECT_EQ(ST::internal::flip_degenerate_triangles(points, triangles, Epick()).flipped, 0u);
+    EXPECT_EQ(ST::internal::remove_covered_degenerate_triangles(points, triangles, Epick()), 2u);
+    EXPECT_EQ(triangles.size(), n - 2);
+    EXPECT_EQ(count_degenerate(points, triangles), 0u);
+    EXPECT_NEAR(total_area(points, triangles), area, 1e-12 * area);
+  }
+}
+
+TEST(SmallFeaturesDegenerate, AnUncoveredDegenerateTriangleIsKept)
+{
+  // (0, 1, 2) with 2 on [0,1]; only [0,2] is an edge of another triangle: [2,1] and [0,1]
+  // are not covered, so removing it would remove the segment ]2,1].
+  std::vector<Point> points = {Point(0, 0, 0), Point(2, 0, 0), Point(1, 0, 0), Point(0.5, 1, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_EQ(ST::internal::remove_covered_degenerate_triangles(points, triangles, Epick()), 0u);
+  EXPECT_EQ(triangles.size(), 2u);
+}
+
+// The pipeline flips them away, or removes them where that is covered, under the default policy,
+// and leaves them under REFUSE. No point moves, and no file is left more open than it was.
+TEST(SmallFeaturesDegenerate, ReconstructTopologyResolvesThemUnderCollapse)
+{
+  for(const char* file :
+      {"real_defects/admesh/conveyor/nearby-bad.stl.xz", "real_defects/admesh/conveyor/nearby-good.stl.xz",
+       "real_defects/admesh/conveyor/fill-holes-bad.stl.xz", "real_defects/admesh/conveyor/fill-holes-good.stl.xz",
+       "real_defects/admesh/conveyor/normal-directions-bad.stl.xz",
+       "real_defects/admesh/conveyor/normal-directions-good.stl.xz",
+       "real_defects/admesh/conveyor/remove-unconnected-bad.stl.xz",
+       "real_defects/admesh/conveyor/remove-unconnected-good.stl.xz", "real_defects/openscad/issue945f.stl",
+       "real_defects/openscad/issue1580-zero-area-triangle.stl", "real_defects/openscad/issue1580-back-to-back.stl",
+       "real_defects/openscad/issue1580-back-to-back2.stl"}) {
     SCOPED_TRACE(file);
     auto [points, triangles] = load<Point>(file);
     const std::size_t before = count_degenerate(points, triangles);
@@ -455,14 +493,160 @@ TEST(SmallFeaturesDegenerate, ReconstructTopologyFlipsThemUnderCollapse)
     auto refused_points = points;
     auto refused_triangles = triangles;
     const ST::Reconstruction_report collapsed = ST::reconstruct_topology(points, triangles);
-    EXPECT_EQ(collapsed.flipped_degenerate_triangles, before);
+    EXPECT_EQ(collapsed.flipped_degenerate_triangles + collapsed.removed_degenerate_triangles, before);
     EXPECT_EQ(collapsed.degenerate_triangles_after, 0u);
     EXPECT_EQ(count_degenerate(points, triangles), 0u);
+    EXPECT_EQ(collapsed.max_displacement, 0.0);
+    EXPECT_LE(collapsed.border_edges_after, collapsed.border_edges_before);
+    EXPECT_LE(collapsed.non_manifold_edges_after, collapsed.non_manifold_edges_before);
     const ST::Reconstruction_report refused = ST::reconstruct_topology(
       refused_points, refused_triangles, ST::parameters::small_features(ST::Small_features::REFUSE));
     EXPECT_EQ(refused.flipped_degenerate_triangles, 0u);
+    EXPECT_EQ(refused.removed_degenerate_triangles, 0u);
     EXPECT_EQ(refused.degenerate_triangles_after, before);
   }
+}
+
+// The back-to-back files come out closed and manifold: the pyramid the triangles make.
+TEST(SmallFeaturesDegenerate, BackToBackFilesComeOutClosed)
+{
+  for(const char* file :
+      {"real_defects/openscad/issue1580-back-to-back.stl", "real_defects/openscad/issue1580-back-to-back2.stl"}) {
+    SCOPED_TRACE(file);
+    auto [points, triangles] = load<Point>(file);
+    const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles);
+    EXPECT_EQ(r.removed_degenerate_triangles, 2u);
+    EXPECT_EQ(r.border_edges_after, 0u);
+    EXPECT_EQ(r.non_manifold_edges_after, 0u);
+    EXPECT_EQ(r.non_manifold_vertices_after, 0u);
+    EXPECT_EQ(r.degenerate_triangles_after, 0u);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parts smaller than the tolerance: a collapse keeps a triangle's points on the surface (the edge
+// or point it collapses onto is on a kept triangle), so such a part is kept, not removed, and
+// the output stays within the tolerance of the input both ways.
+
+/// the largest distance from a point of `from` (corners, edge midpoints, centroids) to the
+/// surface `to`; infinite when `to` is empty and `from` is not.
+double one_sided_distance(const std::vector<Point>& from_points, const std::vector<Triangle>& from_triangles,
+                          const std::vector<Point>& to_points, const std::vector<Triangle>& to_triangles)
+{
+  if(from_triangles.empty()) return 0;
+  if(to_triangles.empty()) return std::numeric_limits<double>::infinity();
+  std::vector<Epick::Triangle_3> surface;
+  for(const Triangle& t : to_triangles) surface.emplace_back(to_points[t[0]], to_points[t[1]], to_points[t[2]]);
+  double largest = 0;
+  for(const Triangle& t : from_triangles) {
+    const Point c[3] = {from_points[t[0]], from_points[t[1]], from_points[t[2]]};
+    for(const Point& p : {c[0], c[1], c[2], CGAL::midpoint(c[0], c[1]), CGAL::midpoint(c[1], c[2]),
+                          CGAL::midpoint(c[2], c[0]), CGAL::centroid(c[0], c[1], c[2])}) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for(const Epick::Triangle_3& s : surface)
+        nearest = std::min(nearest, std::sqrt(CGAL::to_double(CGAL::squared_distance(p, s))));
+      largest = std::max(largest, nearest);
+    }
+  }
+  return largest;
+}
+
+/// repairs (`points`, `triangles`) under COLLAPSE at `tolerance` and checks that the result is
+/// within the tolerance of the input both ways, has no degenerate triangle, and is the same
+/// surface for a shuffled input; returns the report.
+ST::Reconstruction_report expect_within_tolerance_both_ways(std::vector<Point>& points, std::vector<Triangle>& triangles,
+                                                           double tolerance)
+{
+  const std::vector<Point> input_points = points;
+  const std::vector<Triangle> input_triangles = triangles;
+  const auto np = ST::parameters::small_features(collapse, CGAL::parameters::snapping_tolerance(tolerance));
+  const ST::Reconstruction_report r = ST::reconstruct_topology(points, triangles, np);
+  EXPECT_LE(r.max_displacement, tolerance);
+  EXPECT_EQ(count_degenerate(points, triangles), 0u);
+  EXPECT_LE(one_sided_distance(input_points, input_triangles, points, triangles), tolerance);
+  EXPECT_LE(one_sided_distance(points, triangles, input_points, input_triangles), tolerance);
+  for(unsigned seed : {3u, 11u}) {
+    std::vector<Point> shuffled_points = input_points;
+    std::vector<Triangle> shuffled_triangles = input_triangles;
+    shuffle(shuffled_points, shuffled_triangles, seed);
+    const ST::Reconstruction_report s = ST::reconstruct_topology(shuffled_points, shuffled_triangles, np);
+    EXPECT_EQ(geometry(shuffled_points, shuffled_triangles), geometry(points, triangles));
+    EXPECT_EQ(s.refused_uncovered_collapse, r.refused_uncovered_collapse);
+    EXPECT_EQ(s.small_feature_collapsed_triangles, r.small_feature_collapsed_triangles);
+  }
+  return r;
+}
+
+TEST(SmallFeaturesSmallParts, TwoUnitSquaresAtToleranceThirtyAreKept)
+{
+  // Two unit squares side by side with a gap of 0.01: every vertex is within the tolerance of
+  // every other, so every triangle would collapse onto one point that no triangle keeps.
+  std::vector<Point> points{Point(0, 0, 0), Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                            Point(1.01, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1.01, 1, 0)};
+  std::vector<Triangle> triangles{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const ST::Reconstruction_report r = expect_within_tolerance_both_ways(points, triangles, 30.0);
+  EXPECT_EQ(triangles.size(), 4u);
+  EXPECT_GT(r.refused_uncovered_collapse, 0u);
+  EXPECT_EQ(r.small_feature_collapsed_triangles, 0u);
+}
+
+TEST(SmallFeaturesSmallParts, ALoneSliverIsKept)
+{
+  // A triangle alone, two of whose corners are within the tolerance: collapsing it would remove
+  // a triangle 1 long. (The soup of `ReconstructTopology.Issue20AnyGeomTraitsAndChainedParameters`.)
+  std::vector<Point> points = {Point(0, 0, 0),      Point(1, 0, 0), Point(0, 1, 0),      Point(1.0001, 0, 0),
+                               Point(0, 1.0001, 0), Point(1, 1, 0), Point(5, 5, 0),      Point(5.0001, 5, 0),
+                               Point(5, 6, 0)};
+  std::vector<Triangle> triangles = {{0, 1, 2}, {4, 3, 5}, {6, 7, 8}};
+  const double tolerance = 1e-4 * diagonal(points);
+  const ST::Reconstruction_report r = expect_within_tolerance_both_ways(points, triangles, tolerance);
+  EXPECT_EQ(r.snapped_vertices, 2u); // 3 into 1, 4 into 2
+  EXPECT_EQ(r.small_feature_collapsed_triangles, 0u);
+  EXPECT_EQ(r.rounds, 2u);
+  EXPECT_EQ(r.refused_uncovered_collapse, 2u); // 7 into 6, refused in each round
+  EXPECT_EQ(triangles.size(), 3u);
+}
+
+TEST(SmallFeaturesSmallParts, AThinStripIsNotRemoved)
+{
+  // A strip 10 long and 0.05 wide, open all around, at tolerance 0.1: its two sides are within
+  // the tolerance of each other, and collapsing them would leave nothing of the strip.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(int i = 0; i <= 20; ++i) {
+    points.emplace_back(0.5 * i, 0, 0);
+    points.emplace_back(0.5 * i, 0.05, 0);
+  }
+  for(std::size_t i = 0; i < 20; ++i)
+    triangles.insert(triangles.end(), {Triangle{2 * i, 2 * i + 2, 2 * i + 3}, Triangle{2 * i, 2 * i + 3, 2 * i + 1}});
+  const ST::Reconstruction_report r = expect_within_tolerance_both_ways(points, triangles, 0.1);
+  EXPECT_FALSE(triangles.empty());
+  EXPECT_GT(r.refused_uncovered_collapse, 0u);
+}
+
+TEST(SmallFeaturesSmallParts, TinyTetrahedraBesideALargePart)
+{
+  // A large part with an open seam (two 10 x 10 squares 0.02 apart), a tiny closed tetrahedron
+  // beside the middle of the seam and a tiny open one (three faces) farther away, at tolerance 0.1.
+  // The seam closes; the closed tetrahedron has no border and is not touched; the open one would
+  // collapse onto a point that no triangle keeps, so it is kept.
+  std::vector<Point> points{Point(0, 0, 0), Point(10, 0, 0), Point(10, 10, 0), Point(0, 10, 0),
+                            Point(10.02, 0, 0), Point(20, 0, 0), Point(20, 10, 0), Point(10.02, 10, 0)};
+  std::vector<Triangle> triangles{{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  auto add_tetrahedron = [&](double x, double y, double z, double size, bool closed) {
+    const std::size_t first = points.size();
+    points.insert(points.end(), {Point(x, y, z), Point(x + size, y, z), Point(x, y + size, z), Point(x, y, z + size)});
+    triangles.insert(triangles.end(), {Triangle{first, first + 2, first + 1}, Triangle{first, first + 1, first + 3},
+                                       Triangle{first, first + 3, first + 2}});
+    if(closed) triangles.push_back({first + 1, first + 2, first + 3});
+  };
+  add_tetrahedron(10.01, 5, 0.05, 0.03, true);
+  add_tetrahedron(5, 20, 0, 0.03, false);
+  const ST::Reconstruction_report r = expect_within_tolerance_both_ways(points, triangles, 0.1);
+  EXPECT_EQ(triangles.size(), 4u + 4u + 3u);
+  EXPECT_EQ(r.components, 3u);
+  EXPECT_EQ(r.border_edges_after, 6u + 3u); // the outline of the welded squares, the open tetrahedron's rim
+  EXPECT_GT(r.refused_uncovered_collapse, 0u);
 }
 
 } // namespace small_features_test

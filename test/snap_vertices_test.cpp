@@ -479,13 +479,28 @@ TEST(SnapVertices, Issue21DenseCluster)
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   ST::IO::read_triangle_soup(in, points, triangles);
-  Tables tables(triangles, points.size());
-  const std::clock_t start = std::clock();
-  const ST::Snap_report snap = ST::snap_vertices(points, triangles, tables, CGAL::parameters::snapping_tolerance(1e-3));
-  ST::split_t_junctions(points, triangles, tables, CGAL::parameters::snapping_tolerance(1e-3));
-  const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
-  EXPECT_GT(snap.merged_vertices, 20000u);
-  if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 2.0); }
+  // Under REFUSE the vertices of different triangles are welded. Under COLLAPSE every triangle
+  // would collapse onto one point that no triangle keeps: the cluster, a part smaller than the
+  // tolerance, is kept as it is (and the refusal costs no more than the weld).
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    SCOPED_TRACE(policy == ST::Small_features::REFUSE ? "refuse" : "collapse");
+    std::vector<Triangle> welded = triangles;
+    Tables tables(welded, points.size());
+    const std::clock_t start = std::clock();
+    const ST::Snap_report snap = ST::snap_vertices(
+      points, welded, tables, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(1e-3)));
+    ST::split_t_junctions(points, welded, tables, CGAL::parameters::snapping_tolerance(1e-3));
+    const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
+    if(policy == ST::Small_features::REFUSE) {
+      EXPECT_GT(snap.merged_vertices, 20000u);
+    } else {
+      EXPECT_EQ(snap.merged_vertices, 0u);
+      EXPECT_EQ(snap.collapsed_triangles, 0u);
+      EXPECT_GT(snap.refused_uncovered_collapse, 20000u);
+      EXPECT_EQ(welded, triangles);
+    }
+    if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 2.0); }
+  }
 }
 
 // The grid's components are those of the tolerance graph listed pair by pair: dense clusters

@@ -68,7 +68,9 @@ struct Reconstruction_report
   Small_features small_features = Small_features::REFUSE; ///< the policy for features smaller than the tolerance
   std::size_t small_features_resolved = 0;  ///< `Small_features::COLLAPSE`: pairs of vertices of one triangle within the tolerance merged
   std::size_t small_feature_collapsed_triangles = 0; ///< `Small_features::COLLAPSE`: triangles removed because two of their corners merged
+  std::size_t refused_uncovered_collapse = 0; ///< `Small_features::COLLAPSE`: welds refused because a triangle would collapse onto an edge or point of no kept triangle (a part smaller than the tolerance is kept)
   std::size_t flipped_degenerate_triangles = 0; ///< `Small_features::COLLAPSE`: degenerate input triangles (collinear corners) removed by an edge flip
+  std::size_t removed_degenerate_triangles = 0; ///< `Small_features::COLLAPSE`: degenerate input triangles that no flip removes, removed where the other triangles cover them
   std::size_t degenerate_triangles_after = 0;   ///< triangles of the result with collinear corners
   // T-junctions, summed over the rounds.
   std::size_t t_junctions = 0;              ///< vertices found on the interior of a border edge
@@ -100,7 +102,7 @@ struct Reconstruction_report
 
   /// the total number of refused welds.
   std::size_t refused_welds() const
-  { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds; }
+  { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds + refused_uncovered_collapse; }
   /// `true` if the result has no border edge.
   bool closed() const { return border_edges_after == 0; }
 };
@@ -270,11 +272,14 @@ public:
   }
 
   /// removes the degenerate triangles (three distinct collinear corners) by edge flips, where
-  /// the triangle across the longest edge allows it (`flip_degenerate_triangles()`): the surface
-  /// does not move. Under `Small_features::COLLAPSE`, before the tables are built.
+  /// the triangle across the longest edge allows it (`flip_degenerate_triangles()`), then the
+  /// degenerate triangles left whose points the other triangles cover
+  /// (`remove_covered_degenerate_triangles()`): the surface does not move. Under
+  /// `Small_features::COLLAPSE`, before the tables are built.
   void flip_degenerate_triangles_away()
   {
     report_.flipped_degenerate_triangles = flip_degenerate_triangles(pts_, triangles_, gt_).flipped;
+    report_.removed_degenerate_triangles = remove_covered_degenerate_triangles(pts_, triangles_, gt_);
   }
 
   /// builds the adjacency tables and records what they show before the repair.
@@ -389,6 +394,7 @@ private:
     report_.refused_holds_welds += s.refused_holds_welds;
     report_.small_features_resolved += s.small_features_resolved;
     report_.small_feature_collapsed_triangles += s.collapsed_triangles;
+    report_.refused_uncovered_collapse += s.refused_uncovered_collapse;
     if(round == 0) report_.short_edges = s.short_edges;
   }
   std::size_t add_split_report(const Split_report& t)

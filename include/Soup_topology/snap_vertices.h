@@ -29,7 +29,10 @@ enum class Refusal_reason
   SAME_TRIANGLE,  ///< the two vertices belong to one triangle (merging would collapse it)
   DEGENERATE,     ///< a triangle around the moved vertex would become degenerate (collinear)
   FLIP,           ///< a triangle around the moved vertex would reverse its normal
-  HOLDS_WELDS     ///< the vertex received welds earlier: moving it would carry them farther than the tolerance
+  HOLDS_WELDS,    ///< the vertex received welds earlier: moving it would carry them farther than the tolerance
+  /// `Small_features::COLLAPSE`: a triangle the merge would remove collapses onto an edge or a
+  /// point that no kept triangle has, so the part would vanish instead of being closed
+  UNCOVERED_COLLAPSE
 };
 
 /// \ingroup PkgSoupTopologyWelding
@@ -73,8 +76,12 @@ struct Snap_report
   std::size_t small_features_resolved = 0;
   /// `Small_features::COLLAPSE`: the triangles removed because two of their corners were merged.
   std::size_t collapsed_triangles = 0;
+  /// `Small_features::COLLAPSE`: refusals because a triangle would collapse onto an edge or a
+  /// point that no kept triangle has (see `Refusal_reason::UNCOVERED_COLLAPSE`).
+  std::size_t refused_uncovered_collapse = 0;
   /// total number of refusals.
-  std::size_t refused() const { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds; }
+  std::size_t refused() const
+  { return refused_same_triangle + refused_degenerate + refused_flip + refused_holds_welds + refused_uncovered_collapse; }
 };
 
 namespace internal {
@@ -116,7 +123,13 @@ class Snap_visitor_holder;
 /// every such vertex (no edge longer than the tolerance is collapsed). A triangle two of whose
 /// corners merge is removed (its neighbours are linked across it when the tables are rebuilt)
 /// and counted in `Snap_report::collapsed_triangles`; every point of it moves by at most the
-/// tolerance. The clusters are still made by the canonical rule of step 2 and the guard of
+/// tolerance. A triangle is removed only where the surface stays: the edge (or the point) it
+/// collapses onto must be an edge (a corner) of a triangle that is kept. Otherwise the moves of its
+/// corners are refused (`Refusal_reason::UNCOVERED_COLLAPSE`, counted in
+/// `Snap_report::refused_uncovered_collapse`), together with the guard of step 3, until both hold.
+/// So a part smaller than the tolerance is kept as it is rather than removed, and every point of
+/// the input is within the tolerance of the output and every point of the output within the
+/// tolerance of the input. The clusters are still made by the canonical rule of step 2 and the guard of
 /// step 3 still keeps every other triangle non-degenerate and unflipped, so the decisions stay
 /// exact and independent of the order of the input. A soup without two vertices of one triangle
 /// within the tolerance is welded identically under both policies.

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace Soup_topology {
@@ -40,6 +41,14 @@ struct Degenerate_flip_counts
 /// The degenerate triangles are taken in a geometric order (their sorted corners); within a pass
 /// a triangle takes part in one flip at most, and the tables are rebuilt between passes. Every
 /// flip removes a degenerate triangle and creates none, so the passes end.
+///
+/// Cost: a pass scans the triangles and builds the tables, O(n), and there are at most 17 passes,
+/// so the whole is linear in the soup (no re-scan after each flip). A pass flips every degenerate
+/// triangle whose neighbour is free; another pass is needed only where a flip makes a degenerate
+/// triangle flippable, i.e. along a chain of degenerate triangles each across the long edge of
+/// the next, which one pass shortens by one. A chain longer than the passes allow is left
+/// (counted in `remaining`) to `remove_covered_degenerate_triangles()`, rather than paid for with a
+/// quadratic number of passes.
 template <class Kernel, class Point, class TriangleRange>
 Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& points, TriangleRange& triangles,
                                                  const Kernel& kernel)
@@ -105,6 +114,63 @@ Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& point
   }
   counts.remaining = degenerate.size();
   return counts;
+}
+
+/// removes from `triangles` the triangles whose three distinct corners are collinear (exactly,
+/// by `Collinear_3`) and whose points the other triangles cover, and returns how many. Such a
+/// triangle (a, b, c), c between a and b, is the segment [a,b]; it is covered when [a,b] is an
+/// edge of a triangle that is not degenerate, or when [a,c] and [c,b] both are. Removing it then
+/// moves no point of the surface: it only unlinks its edges, which the weld and the T-junction
+/// splits of the pipeline link again (c lies on [a,b]). This resolves what the flips of
+/// `flip_degenerate_triangles()` cannot, e.g. two degenerate triangles glued back to back or
+/// along their long edge. The decision of each triangle depends on the non-degenerate triangles
+/// only, so it does not depend on the order of the triangles; the others keep their order.
+template <class Kernel, class Point, class TriangleRange>
+std::size_t remove_covered_degenerate_triangles(const std::vector<Point>& points, TriangleRange& triangles,
+                                                const Kernel& kernel)
+{
+  using size_type = Adjacency_tables::size_type;
+  const typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
+  const typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
+  const std::size_t n = static_cast<std::size_t>(triangles.size());
+  auto corners = [&](std::size_t t) { return triangle_indices(*(triangles.begin() + static_cast<std::ptrdiff_t>(t))); };
+  std::vector<char> is_degenerate(n, 0);
+  bool any = false;
+  for(std::size_t t = 0; t < n; ++t) {
+    const std::array<std::size_t, 3> c = corners(t);
+    if(c[0] != c[1] && c[1] != c[2] && c[2] != c[0] && collinear(points[c[0]], points[c[1]], points[c[2]]))
+      is_degenerate[t] = any = 1;
+  }
+  if(!any) return 0;
+  const Adjacency_tables tables(triangles, points.size());
+  // `true` if [u,w] is an edge of a triangle that is not degenerate.
+  auto has_covering_edge = [&](std::size_t u, std::size_t w) {
+    for(size_type t : tables.triangles_around_vertex(static_cast<size_type>(u)))
+      if(!is_degenerate[t] && tables.local_index(t, static_cast<size_type>(w)) >= 0) return true;
+    return false;
+  };
+  std::vector<char> is_removed(n, 0);
+  std::size_t removed = 0;
+  for(std::size_t t = 0; t < n; ++t) {
+    if(!is_degenerate[t]) continue;
+    std::array<std::size_t, 3> c = corners(t);
+    std::sort(c.begin(), c.end(), [&](std::size_t x, std::size_t y) { return less_xyz(points[x], points[y]); });
+    const std::size_t a = c[0], middle = c[1], b = c[2];
+    if(has_covering_edge(a, b) || (has_covering_edge(a, middle) && has_covering_edge(middle, b))) {
+      is_removed[t] = 1;
+      ++removed;
+    }
+  }
+  if(removed == 0) return 0;
+  std::size_t kept = 0;
+  for(std::size_t t = 0; t < n; ++t) {
+    if(is_removed[t]) continue;
+    if(kept != t)
+      *(triangles.begin() + static_cast<std::ptrdiff_t>(kept)) = std::move(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)));
+    ++kept;
+  }
+  triangles.erase(triangles.begin() + static_cast<std::ptrdiff_t>(kept), triangles.end());
+  return removed;
 }
 
 } // namespace internal

@@ -143,7 +143,8 @@ private:
 /// With `Small_features::COLLAPSE`, two vertices of one triangle within the tolerance of each
 /// other are not refused: the rows of neighbours keep them, a member may share a triangle with
 /// the cluster when it is within the tolerance of every vertex of the cluster it shares one
-/// with, and the triangles whose corners merge are removed (`collapsed_` lists them). Every
+/// with, and the triangles whose corners merge are removed (`collapsed_` lists them) where the
+/// edge or point they collapse onto stays on a kept triangle (`cancel_uncovered_collapses()`). Every
 /// vertex still moves to a representative within the tolerance of it, so every point of a
 /// removed triangle moves by at most the tolerance. Without such a pair in the soup the
 /// decisions are those of `Small_features::REFUSE`.
@@ -482,7 +483,9 @@ private:
         for(size_type t : tables_.triangles_around_vertex(v)) is_touched[t] = 1;
     for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
       if(is_touched[t]) touched_.push_back(t);
-    while(cancel_failing_moves()) {}
+    do {
+      while(cancel_failing_moves()) {}
+    } while(collapse_ && cancel_uncovered_collapses());
   }
 
   // One pass of the guard; `true` if some move was cancelled.
@@ -512,6 +515,68 @@ private:
       if(target_[v] == none) continue;
       visitor_.on_refusal(v, target_[v], why);
       if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate; else ++report_.refused_flip;
+      target_[v] = none;
+      changed = true;
+    }
+    return changed;
+  }
+
+  // Under `Small_features::COLLAPSE`: a triangle two of whose corners merge collapses onto an edge
+  // (or, all three, onto a point) of the final vertices; the collapse is kept only if that edge
+  // (point) belongs to a triangle that is kept, so that every point of the removed triangle,
+  // moved by at most the tolerance, lands on the surface. Otherwise the moves of its corners are
+  // cancelled. All uncovered collapses of a pass are cancelled at once (the result does not
+  // depend on the order of the triangles); `true` if some move was cancelled.
+  bool cancel_uncovered_collapses()
+  {
+    std::vector<size_type> collapsing, image_ends;
+    is_collapsing_.resize(tables_.number_of_triangles(), 0);
+    is_image_end_.resize(points_.size(), 0);
+    for(size_type t : touched_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      if(n0 != n1 && n1 != n2 && n2 != n0) continue;
+      collapsing.push_back(t);
+      is_collapsing_[t] = 1;
+      for(size_type end : {n0, n1, n2})
+        if(!is_image_end_[end]) { is_image_end_[end] = 1; image_ends.push_back(end); }
+    }
+    if(collapsing.empty()) return false;
+    // The vertices that end at an end of an image: the end itself and the vertices merged into it.
+    std::vector<size_type> at_image_ends = image_ends;
+    for(size_type v : candidates_)
+      if(target_[v] != none && is_image_end_[target_[v]]) at_image_ends.push_back(v);
+    // The edges and corners of the kept triangles at the ends of the images, as pairs of final vertices.
+    std::vector<std::pair<size_type, size_type>> kept;
+    for(size_type v : at_image_ends) {
+      const size_type x = final_vertex(v);
+      for(size_type t : tables_.triangles_around_vertex(v)) {
+        if(is_collapsing_[t]) continue;
+        for(size_type w : tables_.triangle(t)) {
+          const size_type f = final_vertex(w);
+          kept.emplace_back(std::min(x, f), std::max(x, f));
+        }
+      }
+    }
+    std::sort(kept.begin(), kept.end());
+    cancelled_.clear();
+    for(size_type t : collapsing) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      // The two ends of the image (equal when it is a point).
+      const size_type p = std::min({n0, n1, n2}), q = std::max({n0, n1, n2});
+      if(std::binary_search(kept.begin(), kept.end(), std::make_pair(p, q))) continue;
+      for(size_type v : tr)
+        if(target_[v] != none) cancelled_.emplace_back(v, Refusal_reason::UNCOVERED_COLLAPSE);
+    }
+    for(size_type t : collapsing) is_collapsing_[t] = 0;
+    for(size_type end : image_ends) is_image_end_[end] = 0;
+    std::sort(cancelled_.begin(), cancelled_.end());
+    bool changed = false;
+    for(const auto& [v, why] : cancelled_) {
+      if(target_[v] == none) continue;
+      visitor_.on_refusal(v, target_[v], why);
+      ++report_.refused_uncovered_collapse;
       target_[v] = none;
       changed = true;
     }
@@ -625,6 +690,8 @@ private:
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
+  std::vector<char> is_collapsing_;                     // triangles whose corners merge (all 0 between passes)
+  std::vector<char> is_image_end_;                      // final vertices of their images (all 0 between passes)
   // Application.
   std::vector<size_type> collapsed_;                    // triangles removed, in increasing order
 };
