@@ -483,6 +483,8 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   rep.add("small_features_resolved", r.small_features_resolved);
   rep.add("small_feature_collapsed_triangles", r.small_feature_collapsed_triangles);
   rep.add("flipped_degenerate_triangles", r.flipped_degenerate_triangles);
+  rep.add("removed_degenerate_triangles", r.removed_degenerate_triangles);
+  rep.add("refused_uncovered_collapse", r.refused_uncovered_collapse);
   rep.add("t_junctions", r.t_junctions);
   rep.add("split_triangles", r.split_triangles);
   rep.add("rounds", r.rounds);
