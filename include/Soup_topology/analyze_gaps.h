@@ -280,10 +280,9 @@ void add_border_features(const Point& p, const Point& q, const Point& r, Adjacen
 
 /// the feature sizes of the soup into `a`: shortest edges and smallest heights of the
 /// non-degenerate triangles, the border features, and the bound a tolerance must stay below.
-template <class Geom_traits>
-void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts,
-                           const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
-                           const Geom_traits& gt, Gap_analysis& a)
+template <class Geom_traits, class TriangleRange>
+void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+                           const Adjacency_tables& tables, const Geom_traits& gt, Gap_analysis& a)
 {
   using Point = typename Geom_traits::Point_3;
   typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
@@ -292,9 +291,9 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
   heights.reserve(tris.size());
   smallest.reserve(tris.size());
   for(std::size_t t = 0; t < tris.size(); ++t) {
-    const Point& p = pts[tris[t][0]];
-    const Point& q = pts[tris[t][1]];
-    const Point& r = pts[tris[t][2]];
+    const Point& p = pts[static_cast<std::size_t>(tris[t][0])];
+    const Point& q = pts[static_cast<std::size_t>(tris[t][1])];
+    const Point& r = pts[static_cast<std::size_t>(tris[t][2])];
     if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
     const Triangle_feature_sizes s = triangle_feature_sizes(p, q, r);
     shortest.push_back(s.shortest_edge);
@@ -315,17 +314,18 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// the gaps of the border vertices `border` into `a`, measured up to the median border edge
 /// length (at least the smallest border feature, so that every gap below the bound and the first
 /// one above it are measured when they exist).
-template <class Geom_traits>
-void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
-                  const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
-                  const std::vector<std::size_t>& border, const Geom_traits& gt, Gap_analysis& a)
+template <class Geom_traits, class TriangleRange>
+void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+                  const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
+                  Gap_analysis& a)
 {
   std::vector<double> border_lengths;
   for(std::size_t t = 0; t < tris.size(); ++t)
     for(int i = 0; i < 3; ++i)
       if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
         border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
-          pts[tris[t][static_cast<std::size_t>(i)]], pts[tris[t][static_cast<std::size_t>((i + 1) % 3)]]))));
+          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>(i)])],
+          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>((i + 1) % 3)])]))));
   std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
                    border_lengths.end());
   a.search_radius = border_lengths[border_lengths.size() / 2];
@@ -338,6 +338,44 @@ void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
   std::sort(a.gaps.begin(), a.gaps.end());
   a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
   a.gap_histogram = log_histogram<Gap_histogram_bin>(a.gaps);
+}
+
+/// the diagonal of the bounding box of the points of `pts` that a triangle of `tris` uses.
+template <class Point, class TriangleRange>
+double used_points_diagonal(const std::vector<Point>& pts, const TriangleRange& tris, std::size_t& used_points)
+{
+  std::vector<char> used(pts.size(), 0);
+  for(std::size_t t = 0; t < tris.size(); ++t)
+    for(std::size_t j = 0; j < 3; ++j) used[static_cast<std::size_t>(tris[t][j])] = 1;
+  used_points = static_cast<std::size_t>(std::count(used.begin(), used.end(), char(1)));
+  if(used_points == pts.size()) return bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
+  std::vector<Point> kept;
+  kept.reserve(used_points);
+  for(std::size_t i = 0; i < pts.size(); ++i)
+    if(used[i]) kept.push_back(pts[i]);
+  return bounding_box_diagonal(kept, CGAL::Identity_property_map<Point>());
+}
+
+/// `analyze_gaps()` of a soup that is exactly welded already, as `IO::read_triangle_soup()`,
+/// `index_triangles()` and the exact weld of `reconstruct_topology()` leave it: no two points of
+/// `pts` are equal and every triangle of `tris` (3 indices into `pts`) has three distinct
+/// corners. Trusted, not checked; points no triangle uses are allowed and ignored. The soup is
+/// neither copied nor welded again: the answer is that of `analyze_gaps()` on the same soup.
+template <class Geom_traits, class TriangleRange>
+Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
+                                         const TriangleRange& tris, const Geom_traits& gt)
+{
+  const Adjacency_tables tables(tris, pts.size());
+  Gap_analysis a;
+  a.triangles = tris.size();
+  a.border_edges = tables.number_of_border_edges();
+  a.bounding_box_diagonal = used_points_diagonal(pts, tris, a.vertices);
+  const std::vector<std::size_t> border = border_vertices(tables);
+  a.border_vertices = border.size();
+  measure_feature_sizes(pts, tris, tables, gt, a);
+  if(!border.empty()) measure_gaps(pts, tris, tables, border, gt, a);
+  suggest_tolerance(a);
+  return a;
 }
 
 } // namespace internal
@@ -398,19 +436,7 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   std::vector<Point> pts;
   std::vector<std::array<std::size_t, 3>> tris;
   internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
-  const Adjacency_tables tables(tris, pts.size());
-
-  Gap_analysis a;
-  a.vertices = pts.size();
-  a.triangles = tris.size();
-  a.border_edges = tables.number_of_border_edges();
-  a.bounding_box_diagonal = internal::bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
-  const std::vector<std::size_t> border = internal::border_vertices(tables);
-  a.border_vertices = border.size();
-  internal::measure_feature_sizes(pts, tris, tables, gt, a);
-  if(!border.empty()) internal::measure_gaps(pts, tris, tables, border, gt, a);
-  internal::suggest_tolerance(a);
-  return a;
+  return internal::analyze_exactly_welded_gaps(pts, tris, gt);
 }
 
 } // namespace Soup_topology
