@@ -666,9 +666,18 @@ private:
     };
     // with double coordinates, a point clearly within the radius is accepted in double
     const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
+    // a point within the radius of the segment lies in the box of its ends grown by the radius:
+    // that box, grown by the bound and the margin of the approximations, rejects most points of
+    // the leaves visited before their distance is computed
+    double box_lo[3], box_hi[3];
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      box_lo[i] = lo[i] - bound - margin_;
+      box_hi[i] = hi[i] + bound + margin_;
+    }
     traverse(box_may_meet, [&](const Frame&, const Node& nd) {
       for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-        if(point_segment_squared_distance(k, s) <= bound2 &&
+        if(in_box(k, box_lo, box_hi) && point_segment_squared_distance(k, s) <= bound2 &&
            ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
             compare_sq(points_[k], seg, r2) != CGAL::LARGER))
           found.push_back(ids_[k]);
@@ -1139,6 +1148,13 @@ private:
     const std::array<double, 3> p = coords(k);
     const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     return dx * dx + dy * dy + dz * dz;
+  }
+
+  // whether the coordinates of the point stored at `k` lie in the box [lo, hi]
+  bool in_box(std::uint32_t k, const double* lo, const double* hi) const
+  {
+    const std::array<double, 3> p = coords(k);
+    return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2];
   }
 
   double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s) const
