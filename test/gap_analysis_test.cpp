@@ -246,6 +246,72 @@ TEST(GapAnalysis, TwoSquaresWithANarrowSeam)
   EXPECT_EQ(border_edges_after(s, a.suggested_tolerance), 6u);  // the seam closed, the outline left
 }
 
+// Two squares of side `side` (two triangles each) side by side, `gap` apart, moved by `offset`
+// along x: one part of an assembly with a seam at its own scale.
+void add_two_squares(Soup& s, double side, double gap, double offset)
+{
+  const std::size_t first = s.points.size();
+  const double x[4] = {offset, offset + side, offset + side + gap, offset + 2 * side + gap};
+  for(int k = 0; k < 2; ++k) {
+    s.points.emplace_back(x[2 * k], 0, 0);
+    s.points.emplace_back(x[2 * k + 1], 0, 0);
+    s.points.emplace_back(x[2 * k + 1], side, 0);
+    s.points.emplace_back(x[2 * k], side, 0);
+  }
+  for(std::size_t k = 0; k < 2; ++k) {
+    const std::size_t b = first + 4 * k;
+    s.triangles.push_back({b, b + 1, b + 2});
+    s.triangles.push_back({b, b + 2, b + 3});
+  }
+}
+
+// A small part (squares of 0.01, seam 1e-6) and a large one (squares of 10, seam 0.05), far
+// apart: one tolerance closes the small seam only (0.05 is above a third of the small part's
+// edges); per part, each seam gets its own tolerance, below its own features. The same parts in
+// any order of the input.
+TEST(GapAnalysis, PartsOfDifferentScalesGetTheirOwnTolerances)
+{
+  Soup s;
+  add_two_squares(s, 0.01, 1e-6, 0);
+  add_two_squares(s, 10, 0.05, 100);
+  const ST::Gap_analysis whole = ST::analyze_gaps(s.points, s.triangles);
+  ASSERT_EQ(whole.verdict, ST::Gap_verdict::SUGGESTED) << whole.reasoning;
+  EXPECT_LT(whole.suggested_tolerance, 0.05);
+  const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part(s.points, s.triangles);
+  ASSERT_EQ(parts.size(), 2u);
+  const ST::Part_gap_analysis& large = parts[0];
+  const ST::Part_gap_analysis& small = parts[1];
+  EXPECT_EQ(large.triangles, 4u);
+  EXPECT_EQ(large.border_vertices, 8u);
+  EXPECT_NEAR(large.feature_bound, 10.0 / 3, 1e-9);
+  ASSERT_EQ(large.verdict, ST::Gap_verdict::SUGGESTED) << large.reasoning;
+  EXPECT_GT(large.suggested_tolerance, 0.05);
+  EXPECT_LT(large.suggested_tolerance, large.feature_bound);
+  EXPECT_NEAR(small.feature_bound, 0.01 / 3, 1e-9);
+  ASSERT_EQ(small.verdict, ST::Gap_verdict::SUGGESTED) << small.reasoning;
+  EXPECT_GT(small.suggested_tolerance, 1e-6);
+  EXPECT_LT(small.suggested_tolerance, small.feature_bound);
+  EXPECT_EQ(small.suggested_tolerance, whole.suggested_tolerance);
+  // Each tolerance closes its own part's seam: the large part alone at its tolerance.
+  Soup large_part;
+  add_two_squares(large_part, 10, 0.05, 100);
+  EXPECT_EQ(border_edges_after(large_part, large.suggested_tolerance), 6u);
+
+  // Reversed points and triangles: the same parts.
+  Soup reversed;
+  const std::size_t n = s.points.size();
+  reversed.points.assign(s.points.rbegin(), s.points.rend());
+  for(auto it = s.triangles.rbegin(); it != s.triangles.rend(); ++it)
+    reversed.triangles.push_back({n - 1 - (*it)[1], n - 1 - (*it)[2], n - 1 - (*it)[0]});
+  const std::vector<ST::Part_gap_analysis> again = ST::analyze_gaps_per_part(reversed.points, reversed.triangles);
+  ASSERT_EQ(again.size(), 2u);
+  for(std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(again[i].triangles, parts[i].triangles);
+    EXPECT_EQ(again[i].suggested_tolerance, parts[i].suggested_tolerance);
+    EXPECT_EQ(again[i].reasoning, parts[i].reasoning);
+  }
+}
+
 TEST(GapAnalysis, RejectsInvalidSoups)
 {
   std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};

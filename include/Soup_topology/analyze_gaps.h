@@ -439,6 +439,184 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   return internal::analyze_exactly_welded_gaps(pts, tris, gt);
 }
 
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the suggestion of the gap analysis for one part of a soup (`analyze_gaps_per_part()`).
+struct Part_gap_analysis
+{
+  std::size_t triangles = 0;                  ///< triangles of the part (after the exact weld)
+  std::size_t border_edges = 0;               ///< its border edges
+  std::size_t border_vertices = 0;            ///< its border vertices (one gap each)
+  double feature_bound = std::numeric_limits<double>::infinity(); ///< a third of its smallest border feature
+  Gap_verdict verdict = Gap_verdict::CLOSED;  ///< the verdict of the rule on its gaps and its bound
+  double suggested_tolerance = 0;             ///< the tolerance (0 unless `SUGGESTED`; `NaN` for `OVERLAP`)
+  std::string reasoning;                      ///< the conclusion in words, with the numbers
+};
+
+namespace internal {
+
+/// the representative of `x` in the union-find forest `parent` (paths halved).
+inline std::size_t find_set(std::vector<std::size_t>& parent, std::size_t x)
+{
+  while(parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+/// joins the sets of `x` and `y`; the smaller representative stays.
+inline void join_sets(std::vector<std::size_t>& parent, std::size_t x, std::size_t y)
+{
+  x = find_set(parent, x);
+  y = find_set(parent, y);
+  if(x < y) parent[y] = x;
+  else if(y < x) parent[x] = y;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief proposes a snapping tolerance per part of the soup, where one tolerance does not fit
+/// all: a small part and a large part in one assembly, each with seams at its own scale.
+///
+/// A report only: `reconstruct_topology()` welds with one tolerance. The soup is welded exactly
+/// as by `analyze_gaps()`, and its gaps and border features are measured the same way. The
+/// *parts* are then the groups of triangles connected by shared vertices or by a gap smaller
+/// than the feature bounds of both sides: a *piece* is a set of triangles connected by shared
+/// vertices, its bound a third of its smallest border feature, and a border vertex joins its piece
+/// to the piece of its nearest border element when the gap is below the bounds of both pieces (so
+/// a seam joins the patches it separates, but no gap joins two parts it would collapse). The rule
+/// of `analyze_gaps()` is applied to the gaps and the bound of every part.
+///
+/// The parts do not depend on the order of the points or the triangles; they are listed by
+/// decreasing number of triangles, then decreasing feature bound, border edges and border
+/// vertices, then by their reasoning.
+///
+/// \tparam PointRange a random-access range of points (read through `point_map`)
+/// \tparam TriangleRange a range of triangles (3 indices each)
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup
+/// \param np optional named parameters: `point_map`, `geom_traits`, as for `analyze_gaps()`
+///
+/// \returns one `Part_gap_analysis` per part.
+/// \throws Invalid_input as `analyze_gaps()`
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, const TriangleRange& triangles,
+                                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Geom_traits = typename NP_helper::Geom_traits;
+  using Point = typename Geom_traits::Point_3;
+  using size_type = Adjacency_tables::size_type;
+  const Geom_traits gt = NP_helper::get_geom_traits(np);
+  std::vector<Point> pts;
+  std::vector<std::array<std::size_t, 3>> tris;
+  internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
+  const Adjacency_tables tables(tris, pts.size());
+
+  // The pieces: the triangles connected by shared vertices.
+  std::vector<size_type> component;
+  const std::size_t components = tables.number_of_connected_components(&component);
+  std::vector<std::size_t> piece(components);
+  for(std::size_t c = 0; c < components; ++c) piece[c] = c;
+  for(std::size_t v = 0; v < pts.size(); ++v) {
+    const auto around = tables.triangles_around_vertex(static_cast<size_type>(v));
+    for(const size_type t : around) internal::join_sets(piece, component[*around.begin()], component[t]);
+  }
+  // The bound of every piece: a third of its smallest border feature.
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::vector<double> piece_feature(components, std::numeric_limits<double>::infinity());
+  std::vector<double> features;
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const auto tt = static_cast<size_type>(t);
+    if(!(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))) continue;
+    const Point& p = pts[tris[t][0]];
+    const Point& q = pts[tris[t][1]];
+    const Point& r = pts[tris[t][2]];
+    if(collinear(p, q, r)) continue;
+    features.clear();
+    internal::add_border_features(p, q, r, tt, tables, features);
+    double& f = piece_feature[internal::find_set(piece, component[t])];
+    for(double x : features) f = std::min(f, x);
+  }
+  // The gaps, as analyze_gaps() measures them, with their nearest elements.
+  Gap_analysis global;
+  const std::vector<std::size_t> border = internal::border_vertices(tables);
+  internal::measure_feature_sizes(pts, tris, tables, gt, global);
+  std::vector<internal::Nearest_border_element> nearest;
+  if(!border.empty()) {
+    internal::measure_gaps(pts, tris, tables, border, gt, global);
+    nearest = internal::nearest_border_elements(pts, tables, border, global.search_radius, gt);
+  }
+  // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so
+  // that the order of the joins does not matter).
+  const auto piece_of_vertex = [&](std::size_t v) {
+    return internal::find_set(piece, component[*tables.triangles_around_vertex(static_cast<size_type>(v)).begin()]);
+  };
+  std::vector<std::size_t> part(piece);
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    const internal::Nearest_border_element& e = nearest[k];
+    if(!std::isfinite(e.distance)) continue;
+    const std::size_t a = piece_of_vertex(border[k]);
+    const std::size_t b = e.vertex != static_cast<std::size_t>(-1) ? piece_of_vertex(e.vertex)
+                                                                     : internal::find_set(piece, component[e.edge.triangle]);
+    if(e.distance < piece_feature[a] / 3 && e.distance < piece_feature[b] / 3) internal::join_sets(part, a, b);
+  }
+  // The rule on every part.
+  std::vector<std::size_t> index_of_part(components, static_cast<std::size_t>(-1));
+  std::vector<Gap_analysis> parts;
+  const auto part_of_piece = [&](std::size_t c) {
+    const std::size_t p = internal::find_set(part, internal::find_set(piece, c));
+    if(index_of_part[p] == static_cast<std::size_t>(-1)) {
+      index_of_part[p] = parts.size();
+      parts.emplace_back();
+      parts.back().search_radius = global.search_radius;
+    }
+    return index_of_part[p];
+  };
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    Gap_analysis& a = parts[part_of_piece(component[t])];
+    ++a.triangles;
+    for(int i = 0; i < 3; ++i)
+      if(tables.is_border_edge(static_cast<size_type>(t), i)) ++a.border_edges;
+  }
+  for(std::size_t c = 0; c < components; ++c) {
+    if(internal::find_set(piece, c) != c) continue;
+    Gap_analysis& a = parts[part_of_piece(c)];
+    a.border_features.minimum = std::min(a.border_features.count ? a.border_features.minimum : piece_feature[c], piece_feature[c]);
+    a.border_features.count = 1;
+  }
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    Gap_analysis& a = parts[part_of_piece(component[*tables.triangles_around_vertex(static_cast<size_type>(border[k])).begin()])];
+    ++a.border_vertices;
+    if(std::isfinite(nearest[k].distance)) a.gaps.push_back(nearest[k].distance);
+    else ++a.gaps_beyond_search_radius;
+  }
+  std::vector<Part_gap_analysis> out;
+  for(Gap_analysis& a : parts) {
+    std::sort(a.gaps.begin(), a.gaps.end());
+    a.feature_bound = a.border_features.minimum / 3;
+    internal::suggest_tolerance(a);
+    Part_gap_analysis p;
+    p.triangles = a.triangles;
+    p.border_edges = a.border_edges;
+    p.border_vertices = a.border_vertices;
+    p.feature_bound = a.feature_bound;
+    p.verdict = a.verdict;
+    p.suggested_tolerance = a.suggested_tolerance;
+    p.reasoning = a.reasoning;
+    out.push_back(p);
+  }
+  std::sort(out.begin(), out.end(), [](const Part_gap_analysis& x, const Part_gap_analysis& y) {
+    if(x.triangles != y.triangles) return x.triangles > y.triangles;
+    if(x.feature_bound != y.feature_bound) return x.feature_bound > y.feature_bound;
+    if(x.border_edges != y.border_edges) return x.border_edges > y.border_edges;
+    if(x.border_vertices != y.border_vertices) return x.border_vertices > y.border_vertices;
+    return x.reasoning < y.reasoning;
+  });
+  return out;
+}
+
 } // namespace Soup_topology
 
 #endif // SOUP_TOPOLOGY_ANALYZE_GAPS_H
