@@ -496,7 +496,15 @@ inline void join_sets(std::vector<std::size_t>& parent, std::size_t x, std::size
 /// \tparam TriangleRange a range of triangles (3 indices each)
 /// \param points the points of the soup
 /// \param triangles the triangles of the soup
-/// \param np optional named parameters: `point_map`, `geom_traits`, as for `analyze_gaps()`
+/// \param np optional named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `points`}
+///     \cgalParamType{a model of `ReadablePropertyMap` whose value is a point of a CGAL kernel}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the kernel of the octree queries and
+///     the distances} \cgalParamType{a CGAL kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
 ///
 /// \returns one `Part_gap_analysis` per part.
 /// \throws Invalid_input as `analyze_gaps()`
