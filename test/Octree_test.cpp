@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -650,6 +651,77 @@ TEST(Octree, SelfJoinMatchesPointQueries)
   check_self_join<Epick>(surface_points(3000, 7), 1);
   check_self_join<Epeck>(clustered_points(500, 8), 16);
   check_self_join<SC>(uniform_points(2000, 9), 8);
+}
+
+
+// The segment queries of for_each_segment_neighborhood() answer, for every segment between two
+// points of the tree, what vertices_near_segment() and a brute-force search answer, once per
+// segment, with both strategies: short segments (the edges of a triangulated surface, most queries
+// inside one leaf or a few), long ones (from the root), and degenerate ones (both ends equal).
+template <typename K>
+void check_segment_join(const std::vector<Xyz>& xyz, std::size_t capacity, ST::Segment_query_strategy strategy)
+{
+  const std::vector<typename K::Point_3> pts = to_points<K>(xyz);
+  const ST::Octree<K> tree(pts, ST::parameters::segment_query_strategy(strategy, ST::parameters::bucket_capacity(capacity)));
+  std::mt19937 gen(5);
+  std::vector<std::array<std::size_t, 2>> segments;
+  for(std::size_t i = 0; i + 1 < pts.size(); ++i)
+  {
+    // the nearest other point: a short segment
+    std::optional<std::size_t> near;
+    std::vector<std::size_t> around;
+    tree.vertices_near_point(pts[i], typename K::FT(0.05), std::back_inserter(around));
+    for(std::size_t j : around)
+      if(j != i)
+        near = j;
+    segments.push_back({i, near ? *near : i + 1});
+    if(i % 97 == 0)
+      segments.push_back({i, std::size_t(gen() % pts.size())});
+    if(i % 101 == 0)
+      segments.push_back({i, i});
+  }
+  for(double r : {0.0, 1e-6, 1e-3, 2e-2, 0.2})
+  {
+    std::vector<int> visits(segments.size(), 0);
+    tree.for_each_segment_neighborhood(segments, typename K::FT(r), [&](std::size_t s, const std::vector<std::size_t>& near) {
+      ++visits[s];
+      const auto& a = pts[segments[s][0]];
+      const auto& b = pts[segments[s][1]];
+      std::vector<std::size_t> expected;
+      tree.vertices_near_segment(a, b, typename K::FT(r), std::back_inserter(expected));
+      ASSERT_EQ(near, expected) << "segment " << s << " radius " << r;
+      if(s % 7 == 0)
+      {
+        ASSERT_EQ(near, brute_near_segment<K>(pts, a, b, r)) << "segment " << s << " radius " << r;
+      }
+    });
+    for(int v : visits)
+      ASSERT_EQ(v, 1);
+  }
+}
+
+TEST(Octree, SegmentJoinMatchesSegmentQueries)
+{
+  for(const auto strategy : {ST::Segment_query_strategy::INDEX_SPACE_BOX, ST::Segment_query_strategy::NEIGHBORHOOD_CULLING})
+  {
+    check_segment_join<Epick>(surface_points(3000, 51), 8, strategy);
+    check_segment_join<Epick>(clustered_points(2000, 52), 4, strategy);
+    check_segment_join<Epeck>(surface_points(500, 53), 16, strategy);
+    check_segment_join<SC>(uniform_points(2000, 54), 1, strategy);
+  }
+}
+
+TEST(Octree, SegmentJoinRejectsIndicesOutOfRange)
+{
+  const std::vector<Epick::Point_3> pts = to_points<Epick>(uniform_points(10, 55));
+  const ST::Octree<Epick> tree(pts);
+  const std::vector<std::array<std::size_t, 2>> bad{{0, 10}};
+  EXPECT_THROW(tree.for_each_segment_neighborhood(bad, 0.1, [](std::size_t, const std::vector<std::size_t>&) {}),
+               ST::Invalid_input);
+  std::size_t calls = 0;
+  tree.for_each_segment_neighborhood(std::vector<std::array<std::size_t, 2>>(), 0.1,
+                                     [&](std::size_t, const std::vector<std::size_t>&) { ++calls; });
+  EXPECT_EQ(calls, 0u);
 }
 
 } // namespace Octree_test

@@ -6,6 +6,7 @@
 // on the order of the input, and says so when the gaps and the features overlap; the `gaps`
 // command and `repair --tolerance auto`.
 
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/reconstruct_topology.h>
 
@@ -20,7 +21,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -243,6 +246,72 @@ TEST(GapAnalysis, TwoSquaresWithANarrowSeam)
   EXPECT_EQ(border_edges_after(s, a.suggested_tolerance), 6u);  // the seam closed, the outline left
 }
 
+// Two squares of side `side` (two triangles each) side by side, `gap` apart, moved by `offset`
+// along x: one part of an assembly with a seam at its own scale.
+void add_two_squares(Soup& s, double side, double gap, double offset)
+{
+  const std::size_t first = s.points.size();
+  const double x[4] = {offset, offset + side, offset + side + gap, offset + 2 * side + gap};
+  for(int k = 0; k < 2; ++k) {
+    s.points.emplace_back(x[2 * k], 0, 0);
+    s.points.emplace_back(x[2 * k + 1], 0, 0);
+    s.points.emplace_back(x[2 * k + 1], side, 0);
+    s.points.emplace_back(x[2 * k], side, 0);
+  }
+  for(std::size_t k = 0; k < 2; ++k) {
+    const std::size_t b = first + 4 * k;
+    s.triangles.push_back({b, b + 1, b + 2});
+    s.triangles.push_back({b, b + 2, b + 3});
+  }
+}
+
+// A small part (squares of 0.01, seam 1e-6) and a large one (squares of 10, seam 0.05), far
+// apart: one tolerance closes the small seam only (0.05 is above a third of the small part's
+// edges); per part, each seam gets its own tolerance, below its own features. The same parts in
+// any order of the input.
+TEST(GapAnalysis, PartsOfDifferentScalesGetTheirOwnTolerances)
+{
+  Soup s;
+  add_two_squares(s, 0.01, 1e-6, 0);
+  add_two_squares(s, 10, 0.05, 100);
+  const ST::Gap_analysis whole = ST::analyze_gaps(s.points, s.triangles);
+  ASSERT_EQ(whole.verdict, ST::Gap_verdict::SUGGESTED) << whole.reasoning;
+  EXPECT_LT(whole.suggested_tolerance, 0.05);
+  const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part(s.points, s.triangles);
+  ASSERT_EQ(parts.size(), 2u);
+  const ST::Part_gap_analysis& large = parts[0];
+  const ST::Part_gap_analysis& small = parts[1];
+  EXPECT_EQ(large.triangles, 4u);
+  EXPECT_EQ(large.border_vertices, 8u);
+  EXPECT_NEAR(large.feature_bound, 10.0 / 3, 1e-9);
+  ASSERT_EQ(large.verdict, ST::Gap_verdict::SUGGESTED) << large.reasoning;
+  EXPECT_GT(large.suggested_tolerance, 0.05);
+  EXPECT_LT(large.suggested_tolerance, large.feature_bound);
+  EXPECT_NEAR(small.feature_bound, 0.01 / 3, 1e-9);
+  ASSERT_EQ(small.verdict, ST::Gap_verdict::SUGGESTED) << small.reasoning;
+  EXPECT_GT(small.suggested_tolerance, 1e-6);
+  EXPECT_LT(small.suggested_tolerance, small.feature_bound);
+  EXPECT_EQ(small.suggested_tolerance, whole.suggested_tolerance);
+  // Each tolerance closes its own part's seam: the large part alone at its tolerance.
+  Soup large_part;
+  add_two_squares(large_part, 10, 0.05, 100);
+  EXPECT_EQ(border_edges_after(large_part, large.suggested_tolerance), 6u);
+
+  // Reversed points and triangles: the same parts.
+  Soup reversed;
+  const std::size_t n = s.points.size();
+  reversed.points.assign(s.points.rbegin(), s.points.rend());
+  for(auto it = s.triangles.rbegin(); it != s.triangles.rend(); ++it)
+    reversed.triangles.push_back({n - 1 - (*it)[1], n - 1 - (*it)[2], n - 1 - (*it)[0]});
+  const std::vector<ST::Part_gap_analysis> again = ST::analyze_gaps_per_part(reversed.points, reversed.triangles);
+  ASSERT_EQ(again.size(), 2u);
+  for(std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(again[i].triangles, parts[i].triangles);
+    EXPECT_EQ(again[i].suggested_tolerance, parts[i].suggested_tolerance);
+    EXPECT_EQ(again[i].reasoning, parts[i].reasoning);
+  }
+}
+
 TEST(GapAnalysis, RejectsInvalidSoups)
 {
   std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
@@ -351,6 +420,160 @@ TEST(GapAnalysis, CrowdedBordersStopAtTheCandidateBudget)
     ADD_FAILURE() << "not refused";
   } catch(const ST::Invalid_input& e) {
     EXPECT_NE(std::string(e.what()).find("too crowded"), std::string::npos) << e.what();
+  }
+}
+
+// The soup `s` as an OFF file whose coordinates read back as the same doubles.
+void write_off(const std::string& file, const Soup& s)
+{
+  std::ofstream out(file);
+  out.precision(17);
+  out << "OFF\n" << s.points.size() << " " << s.triangles.size() << " 0\n";
+  for(const Point& p : s.points) out << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for(const Triangle& t : s.triangles) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+}
+
+// The value of `"key": x` in a one-line JSON object, as the double it reads back as.
+double json_double(const std::string& json, const std::string& key)
+{
+  const std::string pattern = "\"" + key + "\": ";
+  const std::size_t at = json.find(pattern);
+  return at == std::string::npos ? std::nan("") : std::strtod(json.c_str() + at + pattern.size(), nullptr);
+}
+
+ST::Reconstruction_report automatic_repair(Soup& s)
+{
+  return ST::reconstruct_topology(s.points, s.triangles, ST::parameters::automatic_tolerance(true));
+}
+
+// The named parameter automatic_tolerance(true) runs the analysis and repairs at the tolerance it
+// suggests, with the verdict and the reasoning in the report: the same tolerance and the same
+// result as `soup_topology repair --tolerance auto` on the same soup.
+TEST(GapAnalysis, AutomaticToleranceOfThePipelineEqualsTheTool)
+{
+  const Soup mesh = load("clean/elephant.off");
+  Soup soup;
+  const ST::Gap_analysis a = analyze_jittered(mesh, 1e-6, 23, soup);
+  ASSERT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << a.reasoning;
+  Soup repaired = soup;
+  const ST::Reconstruction_report r = automatic_repair(repaired);
+  EXPECT_TRUE(r.automatic_tolerance);
+  EXPECT_EQ(r.tolerance, a.suggested_tolerance);
+  EXPECT_EQ(r.tolerance_verdict, ST::Gap_verdict::SUGGESTED);
+  EXPECT_EQ(r.tolerance_reasoning, a.reasoning);
+  EXPECT_EQ(r.border_edges_after, 0u);
+  // The same as the hand-given tolerance.
+  Soup by_hand = soup;
+  const ST::Reconstruction_report h =
+    ST::reconstruct_topology(by_hand.points, by_hand.triangles, CGAL::parameters::snapping_tolerance(a.suggested_tolerance));
+  EXPECT_FALSE(h.automatic_tolerance);
+  EXPECT_EQ(repaired.points, by_hand.points);
+  EXPECT_EQ(repaired.triangles, by_hand.triangles);
+
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  const std::string dir = soup_test::temporary_folder("automatic_tolerance");
+  write_off(dir + "/jittered.off", soup);
+  const auto [json, code] = soup_test::run_command(cli() + " repair '" + dir + "/jittered.off' -o '" + dir +
+                                                   "/repaired.off' --tolerance auto --json");
+  ASSERT_EQ(code, 0) << json;
+  EXPECT_EQ(json_double(json, "tolerance"), r.tolerance) << json;
+  EXPECT_NE(json.find("\"tolerance_choice\": \"suggested: " + r.tolerance_reasoning + "\""), std::string::npos) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "border_edges_after"), static_cast<long long>(r.border_edges_after));
+  EXPECT_EQ(soup_test::json_integer(json, "soup_triangles"), static_cast<long long>(r.output_triangles));
+  EXPECT_EQ(soup_test::json_integer(json, "soup_vertices"), static_cast<long long>(r.output_points));
+  EXPECT_EQ(soup_test::json_integer(json, "snapped_vertices"), static_cast<long long>(r.snapped_vertices));
+}
+
+// No suggestion (the pig's gaps and features overlap): the pipeline throws, the soup unchanged,
+// as the tool refuses; a tolerance given with it is refused too.
+TEST(GapAnalysis, AutomaticToleranceRefusesWithoutSuggestion)
+{
+  const Soup pig = load("cgal_repair/pig.stl.xz");
+  Soup s = pig;
+  try {
+    automatic_repair(s);
+    ADD_FAILURE() << "not refused";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.points, pig.points);
+  EXPECT_EQ(s.triangles, pig.triangles);
+  EXPECT_THROW(ST::reconstruct_topology(s.points, s.triangles,
+                                        ST::parameters::automatic_tolerance(true, CGAL::parameters::snapping_tolerance(0.1))),
+               ST::Invalid_input);
+  EXPECT_EQ(s.points, pig.points);
+  // automatic_tolerance(false) is the tolerance given.
+  const ST::Reconstruction_report r = ST::reconstruct_topology(
+    s.points, s.triangles, ST::parameters::automatic_tolerance(false, CGAL::parameters::snapping_tolerance(0.3)));
+  EXPECT_FALSE(r.automatic_tolerance);
+  EXPECT_EQ(r.tolerance, 0.3);
+
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  const std::string dir = soup_test::temporary_folder("automatic_tolerance_pig");
+  const auto [refused, code] = soup_test::run_command(cli() + " repair '" + soup_test::data_file("cgal_repair/pig.stl.xz") +
+                                                      "' -o '" + dir + "/pig.off' --tolerance auto 2>&1");
+  EXPECT_EQ(code, 2) << refused;
+  EXPECT_NE(refused.find("overlap"), std::string::npos) << refused;
+}
+
+// The same soup in another order (points, triangles, corners): the same tolerance, reasoning and
+// result counts.
+TEST(GapAnalysis, AutomaticToleranceDoesNotDependOnTheOrder)
+{
+  const Soup mesh = load("clean/fandisk.off.xz");
+  Soup soup;
+  analyze_jittered(mesh, 1e-5, 29, soup);
+  std::mt19937 rng(31);
+  std::vector<std::size_t> order(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  Soup shuffled;
+  shuffled.points.resize(soup.points.size());
+  std::vector<std::size_t> new_index(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) {
+    shuffled.points[i] = soup.points[order[i]];
+    new_index[order[i]] = i;
+  }
+  for(const Triangle& t : soup.triangles) {
+    const std::size_t r = rng() % 3;
+    shuffled.triangles.push_back({new_index[t[r]], new_index[t[(r + 1) % 3]], new_index[t[(r + 2) % 3]]});
+  }
+  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  const ST::Reconstruction_report a = automatic_repair(soup);
+  const ST::Reconstruction_report b = automatic_repair(shuffled);
+  EXPECT_TRUE(a.automatic_tolerance);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.tolerance_verdict, b.tolerance_verdict);
+  EXPECT_EQ(a.tolerance_reasoning, b.tolerance_reasoning);
+  EXPECT_EQ(a.border_edges_after, b.border_edges_after);
+  EXPECT_EQ(a.output_triangles, b.output_triangles);
+  EXPECT_EQ(a.output_points, b.output_points);
+  EXPECT_EQ(a.border_edges_after, 0u);
+}
+
+// The analysis of a soup exactly welded already (as the tool reads it) equals that of the
+// public function, which welds its own copy.
+TEST(GapAnalysis, ExactlyWeldedSoupIsNotWeldedAgain)
+{
+  for(const char* file : {"cgal_repair/pig.stl.xz", "cad/kicad/TO-220-3_Vertical.wrl", "cad/ALSTOM_TEST4.off"}) {
+    SCOPED_TRACE(file);
+    const Soup s = load(file);
+    const ST::Gap_analysis a = ST::analyze_gaps(s.points, s.triangles);
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    ST::IO::read_triangle_soup(soup_test::data_file(file), points, triangles);
+    points.push_back(Point(1e3, 1e3, 1e3)); // a point no triangle uses is ignored
+    const ST::Gap_analysis b = ST::internal::analyze_exactly_welded_gaps(points, triangles, Epick());
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.border_vertices, b.border_vertices);
+    EXPECT_EQ(a.bounding_box_diagonal, b.bounding_box_diagonal);
+    EXPECT_EQ(a.gaps, b.gaps);
+    EXPECT_EQ(a.border_features.minimum, b.border_features.minimum);
+    EXPECT_EQ(a.verdict, b.verdict);
+    EXPECT_TRUE(a.suggested_tolerance == b.suggested_tolerance ||
+                (std::isnan(a.suggested_tolerance) && std::isnan(b.suggested_tolerance)));
+    EXPECT_EQ(a.reasoning, b.reasoning);
   }
 }
 

@@ -3,9 +3,10 @@
 //
 // The gap analysis in the command-line tool:
 //   soup_topology gaps FILE [--json]
-// and the choice of `repair --tolerance auto`. A soup whose gaps and features overlap has no
-// automatic tolerance: `repair --tolerance auto` then stops with exit code 2 and says why,
-// before anything is written (the user gives a tolerance by hand, knowing the risk).
+// `repair --tolerance auto` passes `automatic_tolerance(true)` to the pipeline, which runs the same
+// analysis. A soup whose gaps and features overlap has no automatic tolerance: `repair --tolerance
+// auto` then stops with exit code 2 and says why, before anything is written (the user gives a
+// tolerance by hand, knowing the risk).
 
 #ifndef SOUP_TOPOLOGY_TOOLS_GAPS_COMMAND_H
 #define SOUP_TOPOLOGY_TOOLS_GAPS_COMMAND_H
@@ -30,14 +31,6 @@ namespace soup_topology_tool {
 struct Gaps_usage_error : std::invalid_argument
 {
   using std::invalid_argument::invalid_argument;
-};
-
-/// the tolerance chosen by `--tolerance auto`.
-struct Automatic_tolerance
-{
-  double tolerance = 0;        ///< the tolerance given to the repair
-  std::string verdict;         ///< `closed`, `nothing_to_close` or `suggested`
-  std::string reasoning;       ///< the analysis' reasoning
 };
 
 /// shortest text that reads back as the same double; `null` for an infinite or NaN value.
@@ -176,23 +169,13 @@ inline int run_gaps(const std::vector<std::string>& args)
   std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3> points;
   std::vector<std::array<std::size_t, 3>> triangles;
   Soup_topology::IO::read_triangle_soup(file, points, triangles);
-  const Soup_topology::Gap_analysis a = Soup_topology::analyze_gaps(points, triangles);
+  // The soup as read is exactly welded already: the analysis does not weld a copy of it.
+  const Soup_topology::Gap_analysis a =
+    Soup_topology::internal::analyze_exactly_welded_gaps(points, triangles, CGAL::Exact_predicates_inexact_constructions_kernel());
   std::cout << (json ? gap_analysis_json(file, a) + "\n" : gap_analysis_text(file, a));
   std::cout.flush();
   if(!std::cout) throw std::runtime_error("cannot write to standard output");
   return 0;
-}
-
-/// the tolerance of `repair --tolerance auto` for the soup read.
-/// \throws std::runtime_error when the analysis suggests none (the message gives its reasoning).
-template <class Point, class Triangle>
-Automatic_tolerance automatic_tolerance(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
-{
-  const Soup_topology::Gap_analysis a = Soup_topology::analyze_gaps(points, triangles);
-  if(!a.has_suggestion())
-    throw std::runtime_error("--tolerance auto: " + a.reasoning +
-                             "; give a tolerance with --tolerance T (see 'soup_topology gaps')");
-  return Automatic_tolerance{a.suggested_tolerance, Soup_topology::verdict_name(a.verdict), a.reasoning};
 }
 
 } // namespace soup_topology_tool

@@ -46,13 +46,16 @@ inline void check_html_path(const std::string& html, const std::vector<std::stri
   check_writable_target(html, "HTML report");
 }
 
-/// the gap histogram of `points`, `triangles` into `content` (or why there is none).
+/// the gap histogram of `points`, `triangles` into `content` (or why there is none). The soup is
+/// the one `read_triangle_soup` gave, exactly welded already: the analysis does not weld a copy.
 template <class Point>
 void add_input_gaps(Soup_topology::IO::Html_report_content& content, const std::vector<Point>& points,
                     const std::vector<std::array<std::size_t, 3>>& triangles)
 {
   try {
-    const Soup_topology::Gap_analysis gaps = Soup_topology::analyze_gaps(points, triangles);
+    using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
+    const Soup_topology::Gap_analysis gaps =
+      Soup_topology::internal::analyze_exactly_welded_gaps(points, triangles, Kernel());
     content.gap_histogram = gaps.gap_histogram;
     if(gaps.gap_histogram.empty())
       content.gap_note = gaps.border_edges == 0 ? "The input has no border edge: no gap to measure."

@@ -380,7 +380,6 @@ struct Repair_options
   std::optional<double> tolerance, relative;
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
   std::size_t threads = 0;       // --threads N; 0: all cores
-  std::string tolerance_choice;  // its verdict and reasoning, for the report
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
 };
@@ -397,7 +396,8 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     if(a == "-o" || a == "--output") o.out = value();
     else if(a == "--tolerance") {
       const std::string& v = value();
-      if(v == "auto") o.automatic = true;
+      o.automatic = v == "auto";
+      if(o.automatic) o.tolerance.reset();
       else o.tolerance = parse_number(a, v);
     }
     else if(a == "--relative-tolerance") o.relative = parse_number(a, value());
@@ -441,6 +441,15 @@ ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point
     return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
                                                           o.split, ST::parameters::relative_tolerance(*o.relative, told))));
+  if(o.automatic) {
+    try {
+      return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
+        points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
+                                                            o.split, ST::parameters::automatic_tolerance(true, told))));
+    } catch(const ST::Invalid_input& e) {
+      throw std::runtime_error(std::string("--tolerance auto: ") + e.what() + " with --tolerance T (see 'soup_topology gaps')");
+    }
+  }
   return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(points, triangles, split);
 }
 
@@ -459,7 +468,8 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   add_read_counts(rep, read);
   rep.add("exact_duplicates", read.exact_duplicates);
   rep.add("tolerance", r.tolerance);
-  if(o.automatic) rep.add_string("tolerance_choice", o.tolerance_choice);
+  if(r.automatic_tolerance)
+    rep.add_string("tolerance_choice", std::string(ST::verdict_name(r.tolerance_verdict)) + ": " + r.tolerance_reasoning);
   add_statistics(rep, s, 0);
   if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
   rep.add("soup_vertices", r.output_points);
@@ -535,11 +545,6 @@ int run_repair(const std::vector<std::string>& args)
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(o.in, points, triangles);
   const Progress progress(read.input_triangles > 1000000);
   progress("read " + std::to_string(read.input_triangles) + " triangles");
-  if(o.automatic) {
-    const tool::Automatic_tolerance chosen = tool::automatic_tolerance(points, triangles);
-    o.tolerance = chosen.tolerance;
-    o.tolerance_choice = chosen.verdict + ": " + chosen.reasoning;
-  }
   tool::Html_input_soup<Point> html_input;
   if(!o.html_file.empty()) html_input = {points, triangles, {}};
   ST::Default_snap_visitor no_sites;

@@ -248,6 +248,45 @@ public:
     return std::copy(found.begin(), found.end(), out);
   }
 
+  /// the number of points within `radius` of `q`: the size of the answer of
+  /// `vertices_near_point()`, found by the same decisions, without sorting the indices.
+  /// \param q the query point
+  /// \param radius the largest distance from `q`
+  std::size_t number_of_vertices_near_point(const Point_3& q, const FT& radius) const
+  {
+    check_radius(radius);
+    if(empty())
+      return 0;
+    const FT r2 = radius * radius;
+    const Query_point qa = approximate(q);
+    const double bound = radius_bound(r2, qa.err);
+    const double bound2 = bound * bound;
+    std::vector<std::size_t> found;
+    traverse(
+      [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
+      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
+    return found.size();
+  }
+
+  /// the number of points within `radius` of the closed segment `[a,b]`: the size of the answer
+  /// of `vertices_near_segment()`, found by the same decisions, without sorting the indices.
+  /// \param a the source of the segment
+  /// \param b the target of the segment (`a == b` is allowed)
+  /// \param radius the largest distance from the segment
+  std::size_t number_of_vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius) const
+  {
+    check_radius(radius);
+    if(empty())
+      return 0;
+    if(gt_.equal_3_object()(a, b))
+      return number_of_vertices_near_point(a, radius);
+    std::vector<std::size_t> found;
+    scan_near_segment(a, b, radius, strategy_, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
+      return Frame{0, {{0, 0, 0}}};
+    }, found);
+    return found.size();
+  }
+
   /// calls `callback(i, near)` for every point `i`, in Morton order, with `near` the indices of
   /// the points within `radius` of it (itself included), in increasing order: the answers of
   /// `vertices_near_point(point i, radius)` for all points at once (a self-join, as welding
@@ -370,58 +409,10 @@ public:
       return out;
     if(gt_.equal_3_object()(a, b))
       return vertices_near_point(a, radius, out);
-
-    const FT r2 = radius * radius;
-    const Query_point aa = approximate(a), ba = approximate(b);
-    Segment_approx s;
-    double len2 = 0;
-    for(std::size_t i = 0; i < 3; ++i)
-    {
-      s.a[i] = aa.c[i];
-      s.d[i] = ba.c[i] - aa.c[i];
-      len2 += s.d[i] * s.d[i];
-    }
-    s.len2 = len2;
-    const double len = std::sqrt(len2);
-    const double rhi = radius_bound(r2, 0);
-    // the double point-segment distance may be off by a few ulps of (length + distance); a
-    // segment whose squared length underflows is treated as the point a (error at most len)
-    double bound = (rhi + 2 * std::max(aa.err, ba.err) + 1e-10 * (len + rhi) +
-                    (len2 < 1e-280 ? len : 0.)) * (1 + 1e-12);
-    const double bound2 = bound * bound;
-
-    const Segment_3 seg = gt_.construct_segment_3_object()(a, b);
-    typename Geom_traits::Compare_squared_distance_3 compare_sq =
-      gt_.compare_squared_distance_3_object();
-
-    // index-space box of the segment grown by the bound (equations (22)-(24))
-    Address ilo{}, ihi{};
-    if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
-    {
-      for(std::size_t i = 0; i < 3; ++i)
-      {
-        const double lo = std::min(aa.c[i], ba.c[i]) - bound;
-        const double hi = std::max(aa.c[i], ba.c[i]) + bound;
-        ilo[i] = index_of(lo, i, -1);
-        ihi[i] = index_of(hi, i, +1);
-      }
-    }
-
     std::vector<std::size_t> found;
-    const auto box_may_meet = [&](const Frame& f, double&) {
-      if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
-        return index_range_meets(f, ilo, ihi);
-      return box_meets_segment(f, s, bound);
-    };
-    // with double coordinates, a point clearly within the radius is accepted in double
-    const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
-    traverse(box_may_meet, [&](const Frame&, const Node& nd) {
-      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-        if(point_segment_squared_distance(k, s) <= bound2 &&
-           ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
-            compare_sq(points_[k], seg, r2) != CGAL::LARGER))
-          found.push_back(ids_[k]);
-    });
+    scan_near_segment(a, b, radius, strategy, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
+      return Frame{0, {{0, 0, 0}}};
+    }, found);
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -438,6 +429,76 @@ public:
                                        OutputIterator out) const
   {
     return vertices_near_segment(a, b, radius, out, strategy_);
+  }
+
+  /// calls `callback(s, near)` for every segment `s` of `segments`, whose ends are points of
+  /// the tree (`segments[s][0]` and `segments[s][1]`, indices into the range given at
+  /// construction), with `near` the indices of the points within `radius` of the closed segment
+  /// between them, in increasing order: the answers of `vertices_near_segment()` for all the
+  /// segments at once, with the strategy chosen at construction. The segments are visited in
+  /// the Morton order of their first ends (the segments of one first end in the order of
+  /// `segments`). A query starts from the smallest box around the leaf of its first end that
+  /// holds the segment grown by the radius, not from the root: when the segments are short
+  /// against the leaves, as the border edges of a soup are against a tree of their ends, most
+  /// queries scan one leaf or a few. The decisions are the same as in `vertices_near_segment()`.
+  /// \tparam SegmentRange a random-access range whose elements `e` give the ends as `e[0]`
+  ///         and `e[1]` (e.g. `std::vector<std::array<std::size_t, 2>>`)
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \param segments the segments, by the indices of their ends
+  /// \param radius the largest distance from a segment
+  /// \param callback called once per segment
+  /// \throw Invalid_input if an end is not a point of the tree, or as the other queries
+  template <typename SegmentRange, typename Callback>
+  void for_each_segment_neighborhood(const SegmentRange& segments, const FT& radius, Callback callback) const
+  {
+    check_radius(radius);
+    const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(segments), std::end(segments)));
+    // the segments bucketed by the sorted position of their first ends (a counting sort)
+    std::vector<std::uint32_t> first_end(m), second_end(m);
+    std::vector<std::size_t> bucket(size() + 1, 0);
+    for(std::size_t s = 0; s < m; ++s)
+    {
+      const auto& e = *(std::begin(segments) + static_cast<std::ptrdiff_t>(s));
+      first_end[s] = position(static_cast<std::size_t>(e[0]));
+      second_end[s] = position(static_cast<std::size_t>(e[1]));
+      ++bucket[first_end[s] + 1];
+    }
+    if(m == 0)
+      return;
+    for(std::size_t k = 1; k < bucket.size(); ++k)
+      bucket[k] += bucket[k - 1];
+    std::vector<std::uint32_t> order(m);
+    {
+      std::vector<std::size_t> next(bucket.begin(), bucket.end() - 1);
+      for(std::size_t s = 0; s < m; ++s)
+        order[next[first_end[s]]++] = static_cast<std::uint32_t>(s);
+    }
+    std::array<Frame, largest_maximum_depth + 1> path;
+    std::vector<std::size_t> near;
+    traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
+      if(bucket[nd.begin] == bucket[nd.end])
+        return;
+      frames_to_leaf(f, path);
+      const auto smallest_box_around = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+                                           double grow) {
+        return smallest_box_holding(path, nd.level, lo, hi, grow);
+      };
+      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+        for(std::size_t j = bucket[k]; j != bucket[k + 1]; ++j)
+        {
+          const std::uint32_t s = order[j];
+          near.clear();
+          const Point_3& b = points_[second_end[s]];
+          if(gt_.equal_3_object()(points_[k], b))
+            vertices_near_point(b, radius, std::back_inserter(near));
+          else
+          {
+            scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
+            std::sort(near.begin(), near.end());
+          }
+          callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
+        }
+    });
   }
 
   /// @}
@@ -550,6 +611,119 @@ private:
 
   enum class Child_order { OCTANT, NEAREST_FIRST };
 
+  // Appends to `found` (unsorted) the index of every point within `radius` of the segment [a,b]
+  // (a != b), visiting the subtree of the frame `start(lo, hi, grow)` only: `lo` and `hi` are the
+  // corners of the box of the segment's approximate ends, `grow` the widened radius; the frame
+  // returned must hold every point of that box grown by `grow` (the root always does).
+  template <typename Start>
+  void scan_near_segment(const Point_3& a, const Point_3& b, const FT& radius, Segment_query_strategy strategy,
+                         const Start& start, std::vector<std::size_t>& found) const
+  {
+    const FT r2 = radius * radius;
+    const Query_point aa = approximate(a), ba = approximate(b);
+    Segment_approx s;
+    double len2 = 0;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      s.a[i] = aa.c[i];
+      s.d[i] = ba.c[i] - aa.c[i];
+      len2 += s.d[i] * s.d[i];
+    }
+    s.len2 = len2;
+    const double len = std::sqrt(len2);
+    const double rhi = radius_bound(r2, 0);
+    // the double point-segment distance may be off by a few ulps of (length + distance); a
+    // segment whose squared length underflows is treated as the point a (error at most len)
+    double bound = (rhi + 2 * std::max(aa.err, ba.err) + 1e-10 * (len + rhi) +
+                    (len2 < 1e-280 ? len : 0.)) * (1 + 1e-12);
+    const double bound2 = bound * bound;
+
+    const Segment_3 seg = gt_.construct_segment_3_object()(a, b);
+    typename Geom_traits::Compare_squared_distance_3 compare_sq =
+      gt_.compare_squared_distance_3_object();
+
+    std::array<double, 3> lo, hi;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      lo[i] = std::min(aa.c[i], ba.c[i]);
+      hi[i] = std::max(aa.c[i], ba.c[i]);
+    }
+    // index-space box of the segment grown by the bound (equations (22)-(24))
+    Address ilo{}, ihi{};
+    if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
+    {
+      for(std::size_t i = 0; i < 3; ++i)
+      {
+        ilo[i] = index_of(lo[i] - bound, i, -1);
+        ihi[i] = index_of(hi[i] + bound, i, +1);
+      }
+    }
+
+    const auto box_may_meet = [&](const Frame& f, double&) {
+      if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
+        return index_range_meets(f, ilo, ihi);
+      return box_meets_segment(f, s, bound);
+    };
+    // with double coordinates, a point clearly within the radius is accepted in double
+    const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
+    // a point within the radius of the segment lies in the box of its ends grown by the radius:
+    // that box, grown by the bound and the margin of the approximations, rejects most points of
+    // the leaves visited before their distance is computed
+    double box_lo[3], box_hi[3];
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      box_lo[i] = lo[i] - bound - margin_;
+      box_hi[i] = hi[i] + bound + margin_;
+    }
+    traverse(box_may_meet, [&](const Frame&, const Node& nd) {
+      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+        if(in_box(k, box_lo, box_hi) && point_segment_squared_distance(k, s) <= bound2 &&
+           ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
+            compare_sq(points_[k], seg, r2) != CGAL::LARGER))
+          found.push_back(ids_[k]);
+    }, start(lo, hi, bound));
+  }
+
+  // the frames from the root (`path[0]`) to the leaf of frame `f` (`path[level of f]`)
+  void frames_to_leaf(const Frame& f, std::array<Frame, largest_maximum_depth + 1>& path) const
+  {
+    const unsigned level = nodes_[f.node].level;
+    path[level] = f;
+    Frame g{0, {{0, 0, 0}}};
+    path[0] = g;
+    for(unsigned l = 0; l < level; ++l)
+    {
+      const unsigned shift = level - 1 - l;
+      const int octant = int(((f.c[0] >> shift) & 1) << 2 | ((f.c[1] >> shift) & 1) << 1 | ((f.c[2] >> shift) & 1));
+      g = child_frame(g, nodes_[g.node], octant);
+      path[l + 1] = g;
+    }
+  }
+
+  // the deepest frame of `path[0..level]` whose box holds the box [lo, hi] grown by twice `grow`
+  // on every side (the margin covers the rounding of the addresses, as in `neighborhood_of()`);
+  // the root holds every point
+  Frame smallest_box_holding(const std::array<Frame, largest_maximum_depth + 1>& path, unsigned level,
+                             const std::array<double, 3>& lo, const std::array<double, 3>& hi, double grow) const
+  {
+    if(!std::isfinite(grow))
+      return path[0];
+    for(unsigned l = level; l > 0; --l)
+    {
+      const Frame& f = path[l];
+      const double cs = cell_size_[l];
+      bool inside = true;
+      for(std::size_t i = 0; i < 3 && inside; ++i)
+      {
+        const double box_lo = origin_[i] + f.c[i] * cs;
+        inside = lo[i] - box_lo > 2 * grow && (box_lo + cs) - hi[i] > 2 * grow;
+      }
+      if(inside)
+        return f;
+    }
+    return path[0];
+  }
+
   // The neighborhood of the point stored at `k` in leaf `nd` (frame `f`), in increasing order: from
   // the leaf alone when the ball lies well inside the leaf's box, else from a query from the root.
   void neighborhood_of(std::uint32_t k, const Frame& f, const Node& nd, const FT& radius, const FT& r2,
@@ -574,16 +748,16 @@ private:
       vertices_near_point(points_[k], radius, std::back_inserter(near));
   }
 
-  // The depth-first traversal of every query. A node is entered if it holds points and
-  // `box_test(frame, key)` returns true; `leaf_action(frame, node)` is called on the leaves
-  // entered. The children of an inner node are visited in octant order, or, with NEAREST_FIRST,
+  // The depth-first traversal of every query, from the root or from `start`. A node is entered
+  // if it holds points and `box_test(frame, key)` returns true; `leaf_action(frame, node)` is
+  // called on the leaves entered. The children of an inner node are visited in octant order, or, with NEAREST_FIRST,
   // those passing `box_test` when pushed in increasing `key` (they are tested again when popped:
   // the test may have tightened meanwhile).
   template <Child_order order = Child_order::OCTANT, typename Box_test, typename Leaf_action>
-  void traverse(Box_test box_test, Leaf_action leaf_action) const
+  void traverse(Box_test box_test, Leaf_action leaf_action, const Frame& start = Frame{0, {{0, 0, 0}}}) const
   {
     Stack stack;
-    stack.push_back(Frame{0, {{0, 0, 0}}});
+    stack.push_back(start);
     while(!stack.empty())
     {
       const Frame f = stack.back();
@@ -974,6 +1148,13 @@ private:
     const std::array<double, 3> p = coords(k);
     const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     return dx * dx + dy * dy + dz * dz;
+  }
+
+  // whether the coordinates of the point stored at `k` lie in the box [lo, hi]
+  bool in_box(std::uint32_t k, const double* lo, const double* hi) const
+  {
+    const std::array<double, 3> p = coords(k);
+    return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2];
   }
 
   double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s) const

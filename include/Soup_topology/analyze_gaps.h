@@ -280,10 +280,9 @@ void add_border_features(const Point& p, const Point& q, const Point& r, Adjacen
 
 /// the feature sizes of the soup into `a`: shortest edges and smallest heights of the
 /// non-degenerate triangles, the border features, and the bound a tolerance must stay below.
-template <class Geom_traits>
-void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts,
-                           const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
-                           const Geom_traits& gt, Gap_analysis& a)
+template <class Geom_traits, class TriangleRange>
+void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+                           const Adjacency_tables& tables, const Geom_traits& gt, Gap_analysis& a)
 {
   using Point = typename Geom_traits::Point_3;
   typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
@@ -292,9 +291,9 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
   heights.reserve(tris.size());
   smallest.reserve(tris.size());
   for(std::size_t t = 0; t < tris.size(); ++t) {
-    const Point& p = pts[tris[t][0]];
-    const Point& q = pts[tris[t][1]];
-    const Point& r = pts[tris[t][2]];
+    const Point& p = pts[static_cast<std::size_t>(tris[t][0])];
+    const Point& q = pts[static_cast<std::size_t>(tris[t][1])];
+    const Point& r = pts[static_cast<std::size_t>(tris[t][2])];
     if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
     const Triangle_feature_sizes s = triangle_feature_sizes(p, q, r);
     shortest.push_back(s.shortest_edge);
@@ -315,17 +314,18 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// the gaps of the border vertices `border` into `a`, measured up to the median border edge
 /// length (at least the smallest border feature, so that every gap below the bound and the first
 /// one above it are measured when they exist).
-template <class Geom_traits>
-void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
-                  const std::vector<std::array<std::size_t, 3>>& tris, const Adjacency_tables& tables,
-                  const std::vector<std::size_t>& border, const Geom_traits& gt, Gap_analysis& a)
+template <class Geom_traits, class TriangleRange>
+void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+                  const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
+                  Gap_analysis& a)
 {
   std::vector<double> border_lengths;
   for(std::size_t t = 0; t < tris.size(); ++t)
     for(int i = 0; i < 3; ++i)
       if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
         border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
-          pts[tris[t][static_cast<std::size_t>(i)]], pts[tris[t][static_cast<std::size_t>((i + 1) % 3)]]))));
+          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>(i)])],
+          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>((i + 1) % 3)])]))));
   std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
                    border_lengths.end());
   a.search_radius = border_lengths[border_lengths.size() / 2];
@@ -338,6 +338,44 @@ void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
   std::sort(a.gaps.begin(), a.gaps.end());
   a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
   a.gap_histogram = log_histogram<Gap_histogram_bin>(a.gaps);
+}
+
+/// the diagonal of the bounding box of the points of `pts` that a triangle of `tris` uses.
+template <class Point, class TriangleRange>
+double used_points_diagonal(const std::vector<Point>& pts, const TriangleRange& tris, std::size_t& used_points)
+{
+  std::vector<char> used(pts.size(), 0);
+  for(std::size_t t = 0; t < tris.size(); ++t)
+    for(std::size_t j = 0; j < 3; ++j) used[static_cast<std::size_t>(tris[t][j])] = 1;
+  used_points = static_cast<std::size_t>(std::count(used.begin(), used.end(), char(1)));
+  if(used_points == pts.size()) return bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
+  std::vector<Point> kept;
+  kept.reserve(used_points);
+  for(std::size_t i = 0; i < pts.size(); ++i)
+    if(used[i]) kept.push_back(pts[i]);
+  return bounding_box_diagonal(kept, CGAL::Identity_property_map<Point>());
+}
+
+/// `analyze_gaps()` of a soup that is exactly welded already, as `IO::read_triangle_soup()`,
+/// `index_triangles()` and the exact weld of `reconstruct_topology()` leave it: no two points of
+/// `pts` are equal and every triangle of `tris` (3 indices into `pts`) has three distinct
+/// corners. Trusted, not checked; points no triangle uses are allowed and ignored. The soup is
+/// neither copied nor welded again: the answer is that of `analyze_gaps()` on the same soup.
+template <class Geom_traits, class TriangleRange>
+Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
+                                         const TriangleRange& tris, const Geom_traits& gt)
+{
+  const Adjacency_tables tables(tris, pts.size());
+  Gap_analysis a;
+  a.triangles = tris.size();
+  a.border_edges = tables.number_of_border_edges();
+  a.bounding_box_diagonal = used_points_diagonal(pts, tris, a.vertices);
+  const std::vector<std::size_t> border = border_vertices(tables);
+  a.border_vertices = border.size();
+  measure_feature_sizes(pts, tris, tables, gt, a);
+  if(!border.empty()) measure_gaps(pts, tris, tables, border, gt, a);
+  suggest_tolerance(a);
+  return a;
 }
 
 } // namespace internal
@@ -398,19 +436,193 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   std::vector<Point> pts;
   std::vector<std::array<std::size_t, 3>> tris;
   internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
+  return internal::analyze_exactly_welded_gaps(pts, tris, gt);
+}
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the suggestion of the gap analysis for one part of a soup (`analyze_gaps_per_part()`).
+struct Part_gap_analysis
+{
+  std::size_t triangles = 0;                  ///< triangles of the part (after the exact weld)
+  std::size_t border_edges = 0;               ///< its border edges
+  std::size_t border_vertices = 0;            ///< its border vertices (one gap each)
+  double feature_bound = std::numeric_limits<double>::infinity(); ///< a third of its smallest border feature
+  Gap_verdict verdict = Gap_verdict::CLOSED;  ///< the verdict of the rule on its gaps and its bound
+  double suggested_tolerance = 0;             ///< the tolerance (0 unless `SUGGESTED`; `NaN` for `OVERLAP`)
+  std::string reasoning;                      ///< the conclusion in words, with the numbers
+};
+
+namespace internal {
+
+/// the representative of `x` in the union-find forest `parent` (paths halved).
+inline std::size_t find_set(std::vector<std::size_t>& parent, std::size_t x)
+{
+  while(parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+/// joins the sets of `x` and `y`; the smaller representative stays.
+inline void join_sets(std::vector<std::size_t>& parent, std::size_t x, std::size_t y)
+{
+  x = find_set(parent, x);
+  y = find_set(parent, y);
+  if(x < y) parent[y] = x;
+  else if(y < x) parent[x] = y;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief proposes a snapping tolerance per part of the soup, where one tolerance does not fit
+/// all: a small part and a large part in one assembly, each with seams at its own scale.
+///
+/// A report only: `reconstruct_topology()` welds with one tolerance. The soup is welded exactly
+/// as by `analyze_gaps()`, and its gaps and border features are measured the same way. The
+/// *parts* are then the groups of triangles connected by shared vertices or by a gap smaller
+/// than the feature bounds of both sides: a *piece* is a set of triangles connected by shared
+/// vertices, its bound a third of its smallest border feature, and a border vertex joins its piece
+/// to the piece of its nearest border element when the gap is below the bounds of both pieces (so
+/// a seam joins the patches it separates, but no gap joins two parts it would collapse). The rule
+/// of `analyze_gaps()` is applied to the gaps and the bound of every part.
+///
+/// The parts do not depend on the order of the points or the triangles; they are listed by
+/// decreasing number of triangles, then decreasing feature bound, border edges and border
+/// vertices, then by their reasoning.
+///
+/// \tparam PointRange a random-access range of points (read through `point_map`)
+/// \tparam TriangleRange a range of triangles (3 indices each)
+/// \param points the points of the soup
+/// \param triangles the triangles of the soup
+/// \param np optional named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{point_map} \cgalParamDescription{the point of an element of `points`}
+///     \cgalParamType{a model of `ReadablePropertyMap` whose value is a point of a CGAL kernel}
+///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the kernel of the octree queries and
+///     the distances} \cgalParamType{a CGAL kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \returns one `Part_gap_analysis` per part.
+/// \throws Invalid_input as `analyze_gaps()`
+template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, const TriangleRange& triangles,
+                                                     const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
+  using Geom_traits = typename NP_helper::Geom_traits;
+  using Point = typename Geom_traits::Point_3;
+  using size_type = Adjacency_tables::size_type;
+  const Geom_traits gt = NP_helper::get_geom_traits(np);
+  std::vector<Point> pts;
+  std::vector<std::array<std::size_t, 3>> tris;
+  internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
   const Adjacency_tables tables(tris, pts.size());
 
-  Gap_analysis a;
-  a.vertices = pts.size();
-  a.triangles = tris.size();
-  a.border_edges = tables.number_of_border_edges();
-  a.bounding_box_diagonal = internal::bounding_box_diagonal(pts, CGAL::Identity_property_map<Point>());
+  // The pieces: the triangles connected by shared vertices.
+  std::vector<size_type> component;
+  const std::size_t components = tables.number_of_connected_components(&component);
+  std::vector<std::size_t> piece(components);
+  for(std::size_t c = 0; c < components; ++c) piece[c] = c;
+  for(std::size_t v = 0; v < pts.size(); ++v) {
+    const auto around = tables.triangles_around_vertex(static_cast<size_type>(v));
+    for(const size_type t : around) internal::join_sets(piece, component[*around.begin()], component[t]);
+  }
+  // The bound of every piece: a third of its smallest border feature.
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::vector<double> piece_feature(components, std::numeric_limits<double>::infinity());
+  std::vector<double> features;
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const auto tt = static_cast<size_type>(t);
+    if(!(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))) continue;
+    const Point& p = pts[tris[t][0]];
+    const Point& q = pts[tris[t][1]];
+    const Point& r = pts[tris[t][2]];
+    if(collinear(p, q, r)) continue;
+    features.clear();
+    internal::add_border_features(p, q, r, tt, tables, features);
+    double& f = piece_feature[internal::find_set(piece, component[t])];
+    for(double x : features) f = std::min(f, x);
+  }
+  // The gaps, as analyze_gaps() measures them, with their nearest elements.
+  Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
-  a.border_vertices = border.size();
-  internal::measure_feature_sizes(pts, tris, tables, gt, a);
-  if(!border.empty()) internal::measure_gaps(pts, tris, tables, border, gt, a);
-  internal::suggest_tolerance(a);
-  return a;
+  internal::measure_feature_sizes(pts, tris, tables, gt, global);
+  std::vector<internal::Nearest_border_element> nearest;
+  if(!border.empty()) {
+    internal::measure_gaps(pts, tris, tables, border, gt, global);
+    nearest = internal::nearest_border_elements(pts, tables, border, global.search_radius, gt);
+  }
+  // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so
+  // that the order of the joins does not matter).
+  const auto piece_of_vertex = [&](std::size_t v) {
+    return internal::find_set(piece, component[*tables.triangles_around_vertex(static_cast<size_type>(v)).begin()]);
+  };
+  std::vector<std::size_t> part(piece);
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    const internal::Nearest_border_element& e = nearest[k];
+    if(!std::isfinite(e.distance)) continue;
+    const std::size_t a = piece_of_vertex(border[k]);
+    const std::size_t b = e.vertex != static_cast<std::size_t>(-1) ? piece_of_vertex(e.vertex)
+                                                                     : internal::find_set(piece, component[e.edge.triangle]);
+    if(e.distance < piece_feature[a] / 3 && e.distance < piece_feature[b] / 3) internal::join_sets(part, a, b);
+  }
+  // The rule on every part.
+  std::vector<std::size_t> index_of_part(components, static_cast<std::size_t>(-1));
+  std::vector<Gap_analysis> parts;
+  const auto part_of_piece = [&](std::size_t c) {
+    const std::size_t p = internal::find_set(part, internal::find_set(piece, c));
+    if(index_of_part[p] == static_cast<std::size_t>(-1)) {
+      index_of_part[p] = parts.size();
+      parts.emplace_back();
+      parts.back().search_radius = global.search_radius;
+    }
+    return index_of_part[p];
+  };
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    Gap_analysis& a = parts[part_of_piece(component[t])];
+    ++a.triangles;
+    for(int i = 0; i < 3; ++i)
+      if(tables.is_border_edge(static_cast<size_type>(t), i)) ++a.border_edges;
+  }
+  for(std::size_t c = 0; c < components; ++c) {
+    if(internal::find_set(piece, c) != c) continue;
+    Gap_analysis& a = parts[part_of_piece(c)];
+    a.border_features.minimum = std::min(a.border_features.count ? a.border_features.minimum : piece_feature[c], piece_feature[c]);
+    a.border_features.count = 1;
+  }
+  for(std::size_t k = 0; k < border.size(); ++k) {
+    Gap_analysis& a = parts[part_of_piece(component[*tables.triangles_around_vertex(static_cast<size_type>(border[k])).begin()])];
+    ++a.border_vertices;
+    if(std::isfinite(nearest[k].distance)) a.gaps.push_back(nearest[k].distance);
+    else ++a.gaps_beyond_search_radius;
+  }
+  std::vector<Part_gap_analysis> out;
+  for(Gap_analysis& a : parts) {
+    std::sort(a.gaps.begin(), a.gaps.end());
+    a.feature_bound = a.border_features.minimum / 3;
+    internal::suggest_tolerance(a);
+    Part_gap_analysis p;
+    p.triangles = a.triangles;
+    p.border_edges = a.border_edges;
+    p.border_vertices = a.border_vertices;
+    p.feature_bound = a.feature_bound;
+    p.verdict = a.verdict;
+    p.suggested_tolerance = a.suggested_tolerance;
+    p.reasoning = a.reasoning;
+    out.push_back(p);
+  }
+  std::sort(out.begin(), out.end(), [](const Part_gap_analysis& x, const Part_gap_analysis& y) {
+    if(x.triangles != y.triangles) return x.triangles > y.triangles;
+    if(x.feature_bound != y.feature_bound) return x.feature_bound > y.feature_bound;
+    if(x.border_edges != y.border_edges) return x.border_edges > y.border_edges;
+    if(x.border_vertices != y.border_vertices) return x.border_vertices > y.border_vertices;
+    return x.reasoning < y.reasoning;
+  });
+  return out;
 }
 
 } // namespace Soup_topology

@@ -87,6 +87,9 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(count_self_intersections_t, count_self_interse
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(maximum_number_of_rounds_t, maximum_number_of_rounds)
 /// whether `reconstruct_topology()` splits T-junctions (default `true`).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(split_t_junctions_t, do_split_t_junctions)
+/// whether `reconstruct_topology()` chooses its tolerance by the gap analysis (`analyze_gaps()`)
+/// of the soup, instead of `snapping_tolerance` or `relative_tolerance`; a `bool` (default `false`).
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(automatic_tolerance_t, automatic_tolerance)
 
 // Orientation (`orient_triangle_soup()`, `triangle_soup_to_face_graph()`).
 

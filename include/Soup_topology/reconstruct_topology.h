@@ -11,6 +11,7 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Triangle_adjacency_graph.h>
+#include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/snap_vertices.h>
@@ -99,6 +100,10 @@ struct Reconstruction_report
   // A mesh given as input (`reconstruct_topology(mesh, np)`).
   std::size_t triangulated_polygons = 0;    ///< faces of more than 3 vertices cut into triangles
   std::size_t unclipped_corners = 0;        ///< corners of such faces that no ear could be cut at (their triangles are left out)
+  // Asked for with `automatic_tolerance(true)`: why `tolerance` is what it is.
+  bool automatic_tolerance = false;         ///< whether the gap analysis chose `tolerance`
+  Gap_verdict tolerance_verdict = Gap_verdict::CLOSED; ///< the analysis' verdict (`CLOSED`, `NOTHING_TO_CLOSE` or `SUGGESTED`)
+  std::string tolerance_reasoning;          ///< the analysis' reasoning: which gaps the tolerance closes, what margins it keeps
 
   /// the total number of refused welds.
   std::size_t refused_welds() const
@@ -415,6 +420,26 @@ private:
   Reconstruction_report report_;
 };
 
+/// the gap analysis of `automatic_tolerance(true)`, on the soup given to the pipeline before
+/// anything is changed: on a copy welded by `analyze_gaps()`, or, with `Exact_weld::DONE`, on the
+/// soup itself.
+/// \throws Invalid_input if a tolerance is given too, or if the analysis suggests none (its reasoning says why)
+template <class Point, class TriangleRange, class NamedParameters, class Geom_traits>
+Gap_analysis automatic_tolerance_analysis(const std::vector<Point>& pts, const TriangleRange& triangles,
+                                          const NamedParameters&, const Geom_traits& gt, Exact_weld exact_weld)
+{
+  using CGAL::parameters::is_default_parameter;
+  if(!is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value ||
+     !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value)
+    throw Invalid_input("automatic_tolerance(true) chooses the tolerance: give no snapping_tolerance or relative_tolerance with it");
+  Gap_analysis a = exact_weld == Exact_weld::DONE
+                     ? analyze_exactly_welded_gaps(pts, triangles, gt)
+                     : analyze_gaps(pts, triangles, CGAL::parameters::geom_traits(gt));
+  if(!a.has_suggestion())
+    throw Invalid_input("automatic tolerance: " + a.reasoning + "; give a tolerance by hand");
+  return a;
+}
+
 /// the pipeline on a validated soup (`check_indexed_soup()`): `put_points(steps)` gives the
 /// points to `steps` (`Soup_reconstruction::copy_points()` or `take_points()`), `triangles` is
 /// repaired in place. On return `pts` holds the output points and `input_index[k]` is the index
@@ -431,7 +456,14 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   using FT = typename Geom_traits::FT;
   Soup_reconstruction<Geom_traits, TriangleRange, ConcurrencyTag> steps(pts, triangles, input_index, gt);
   put_points(steps);
-  const FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
+  FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
+  std::optional<Gap_analysis> automatic;
+  if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, internal_np::automatic_tolerance_t>::value) {
+    if(choose_parameter(get_parameter(np, internal_np::automatic_tolerance), false)) {
+      automatic = automatic_tolerance_analysis(steps.points(), triangles, np, gt, exact_weld);
+      eps = FT(automatic->suggested_tolerance);
+    }
+  }
   if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
   const Small_features policy = small_features_policy(np);
   if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
@@ -443,7 +475,13 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   });
   steps.measure_displacement();
   steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
-  return steps.report();
+  Reconstruction_report report = steps.report();
+  if(automatic) {
+    report.automatic_tolerance = true;
+    report.tolerance_verdict = automatic->verdict;
+    report.tolerance_reasoning = automatic->reasoning;
+  }
+  return report;
 }
 
 /// writes output point `k` into element `k` of `points` through `pm`, from input element
@@ -577,6 +615,14 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     duplicates only} \cgalParamNEnd
 ///   \cgalParamNBegin{relative_tolerance} \cgalParamType{`double`} \cgalParamDescription{the tolerance as a
 ///     fraction of the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{automatic_tolerance} \cgalParamDescription{if `true`, the tolerance is the one
+///     `analyze_gaps()` suggests for the soup (0 for a soup without border or without gap to close);
+///     the report gives it, the verdict and the reasoning (`Reconstruction_report::automatic_tolerance`,
+///     `tolerance_verdict`, `tolerance_reasoning`). When the analysis suggests none (its gaps and
+///     features overlap) or the border is too crowded to analyse, `Invalid_input` is thrown and the
+///     soup is unchanged: the caller gives a tolerance by hand. Not with `snapping_tolerance` or
+///     `relative_tolerance`. `geom_traits` then also needs `Segment_3`, `Construct_segment_3` and
+///     `Compute_squared_distance_3`.} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
 ///   \cgalParamNBegin{visitor} \cgalParamDescription{told every weld and every refused weld of every
 ///     round, with the indices of `points` (a point merged by the exact weld is known by the first
 ///     of the equal points). If it also has the member functions of `Default_split_visitor`, it is
@@ -600,8 +646,8 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// \cgalNamedParamsEnd
 /// \returns a `Reconstruction_report`.
 /// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
-///         in a face, a non-finite coordinate or an invalid tolerance; `points` and `triangles`
-///         are unchanged then.
+///         in a face, a non-finite coordinate or an invalid tolerance, or when `automatic_tolerance(true)`
+///         finds no tolerance; `points` and `triangles` are unchanged then.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters,
           std::enable_if_t<internal::is_named_parameters<NamedParameters>::value &&

@@ -76,6 +76,11 @@ inline void check_gap_candidate_budget(std::size_t examined, std::size_t n)
                         " candidate pairs); give the tolerance by hand");
 }
 
+/// how a search of `Nearest_border_search` counts its candidates against the budget: while it
+/// examines them (one pass), or all of them first, without listing them in order or examining
+/// any (a crowded soup is then refused at the cost of the count alone).
+enum class Candidates { COUNT_WHILE_SEARCHING, COUNT_FIRST };
+
 /// the search of `nearest_border_elements()`: the border vertices in an octree, the answers so
 /// far, and the number of candidates examined.
 template <class Geom_traits>
@@ -93,43 +98,66 @@ public:
   {
     border_points_.reserve(border.size());
     for(std::size_t v : border) border_points_.push_back(points[v]);
-    tree_.emplace(border_points_, CGAL::Identity_property_map<Point>(), gt);
+    tree_.emplace(border_points_, parameters::bucket_capacity(border_bucket_capacity, CGAL::parameters::geom_traits(gt)));
   }
+
+  /// the bucket capacity of the octree of the border vertices: larger than the default, as the
+  /// copies of a seam vertex come in tight clusters (fewer, fuller leaves answer more queries
+  /// from one leaf).
+  static constexpr std::size_t border_bucket_capacity = 32;
 
   std::vector<Nearest_border_element>& nearest() { return nearest_; }
 
   /// every border vertex's nearest element within `radius`: the self-join of the border
-  /// vertices, then one segment query per border edge over the whole tree.
-  void search_all(double radius)
+  /// vertices, then the segment queries of all the border edges at once (their ends are
+  /// border vertices, points of the tree: each query starts next to its edge). With
+  /// `Candidates::COUNT_FIRST` the candidates are counted (and the budget checked) before any is
+  /// listed in order or examined.
+  void search_all(double radius, Candidates candidates)
   {
     const FT r(radius);
+    if(border_edges_.empty()) list_border_edges();
+    const bool count_while_searching = candidates == Candidates::COUNT_WHILE_SEARCHING;
+    if(!count_while_searching) {
+      for(const Point& p : border_points_) count_examined(tree_->number_of_vertices_near_point(p, r));
+      for(const std::array<std::size_t, 2>& e : border_edge_ends_)
+        count_examined(tree_->number_of_vertices_near_segment(border_points_[e[0]], border_points_[e[1]], r));
+    }
     tree_->for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
-      count_examined(near.size());
+      if(count_while_searching) count_examined(near.size());
       for(std::size_t j : near) offer_vertex(k, j);
     });
-    std::vector<std::size_t> all(border_.size());
-    for(std::size_t k = 0; k < all.size(); ++k) all[k] = k;
-    search_edges(*tree_, all, r);
+    tree_->for_each_segment_neighborhood(border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
+      if(count_while_searching) count_examined(near.size());
+      offer_edge(border_edges_[e], near, [](std::size_t m) { return m; });
+    });
   }
 
   /// the nearest element within `radius` of the border vertices `subset` (indices into
   /// `border`, increasing) only, their earlier answers forgotten: one radius query per vertex of
-  /// the subset, and one segment query per border edge over an octree of the subset.
+  /// the subset, and one segment query per border edge over an octree of the subset. The
+  /// candidates are counted (and the budget checked) before any is listed in order or examined.
   void search_subset(const std::vector<std::size_t>& subset, double radius)
   {
     const FT r(radius);
+    if(border_edges_.empty()) list_border_edges();
+    for(std::size_t k : subset) count_examined(tree_->number_of_vertices_near_point(border_points_[k], r));
+    std::vector<Point> subset_points;
+    subset_points.reserve(subset.size());
+    for(std::size_t k : subset) subset_points.push_back(border_points_[k]);
+    const Tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
+    for(const Adjacency_tables::Edge& edge : border_edges_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
+      count_examined(subset_tree.number_of_vertices_near_segment(
+        points_[tr[static_cast<std::size_t>(edge.index)]], points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]], r));
+    }
     std::vector<std::size_t> near;
     for(std::size_t k : subset) {
       nearest_[k] = Nearest_border_element();
       near.clear();
       tree_->vertices_near_point(border_points_[k], r, std::back_inserter(near));
-      count_examined(near.size());
       for(std::size_t j : near) offer_vertex(k, j);
     }
-    std::vector<Point> subset_points;
-    subset_points.reserve(subset.size());
-    for(std::size_t k : subset) subset_points.push_back(border_points_[k]);
-    const Tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
     search_edges(subset_tree, subset, r);
   }
 
@@ -154,39 +182,63 @@ private:
     }
   }
 
-  // Then the border edges in the order of their triangles: an edge replaces the answer only if
-  // it is strictly nearer (a vertex at the same distance as an edge is preferred, its end point
-  // usually). An edge shares a triangle with a vertex when its (only) triangle contains the vertex.
-  // `tree` holds the points of the vertices `ks` (indices into `border`), in that order.
+  // The border edges in the order of their triangles, and their ends as indices into `border`.
+  void list_border_edges()
+  {
+    std::vector<std::size_t> border_index(tables_.number_of_vertices(), 0);
+    for(std::size_t k = 0; k < border_.size(); ++k) border_index[border_[k]] = k;
+    for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
+      const auto tt = static_cast<Adjacency_tables::size_type>(t);
+      const Adjacency_tables::Triangle& tr = tables_.triangle(tt);
+      for(int i = 0; i < 3; ++i) {
+        if(!tables_.is_border_edge(tt, i)) continue;
+        border_edges_.push_back(Adjacency_tables::Edge{tt, i});
+        border_edge_ends_.push_back({border_index[tr[static_cast<std::size_t>(i)]],
+                                     border_index[tr[static_cast<std::size_t>((i + 1) % 3)]]});
+      }
+    }
+  }
+
+  // Then the border edges: an edge replaces the answer only if it is strictly nearer, or as near
+  // as an edge earlier in the order of the triangles (a vertex at the same distance as an edge
+  // is preferred, its end point usually; among equally near edges the first one): the answer
+  // does not depend on the order in which the edges are offered. An edge shares a triangle with
+  // a vertex when its (only) triangle contains the vertex. `near` lists vertices found near the
+  // edge, `to_border(m)` their indices into `border`.
+  template <class To_border>
+  void offer_edge(const Adjacency_tables::Edge& edge, const std::vector<std::size_t>& near, const To_border& to_border)
+  {
+    if(near.empty()) return;
+    const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
+    const Point& a = points_[tr[static_cast<std::size_t>(edge.index)]];
+    const Point& b = points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]];
+    const auto s = gt_.construct_segment_3_object()(a, b);
+    for(std::size_t m : near) {
+      const std::size_t k = to_border(m);
+      const std::size_t v = border_[k];
+      if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
+      const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s)));
+      Nearest_border_element& best = nearest_[k];
+      if(d < best.distance ||
+         (d == best.distance && best.vertex == static_cast<std::size_t>(-1) && edge < best.edge)) {
+        best.distance = d;
+        best.vertex = static_cast<std::size_t>(-1);
+        best.edge = edge;
+      }
+    }
+  }
+
+  // The segment query of every border edge over `tree`, which holds the points of the vertices
+  // `ks` (indices into `border`), in that order (the candidates counted already).
   void search_edges(const Tree& tree, const std::vector<std::size_t>& ks, const FT& r)
   {
     std::vector<std::size_t> near;
-    typename Geom_traits::Construct_segment_3 segment = gt_.construct_segment_3_object();
-    for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
-      const auto tt = static_cast<Adjacency_tables::size_type>(t);
-      for(int i = 0; i < 3; ++i) {
-        if(!tables_.is_border_edge(tt, i)) continue;
-        const Adjacency_tables::Triangle& tr = tables_.triangle(tt);
-        const Point& a = points_[tr[static_cast<std::size_t>(i)]];
-        const Point& b = points_[tr[static_cast<std::size_t>((i + 1) % 3)]];
-        near.clear();
-        tree.vertices_near_segment(a, b, r, std::back_inserter(near));
-        count_examined(near.size());
-        if(near.empty()) continue;
-        const auto s = segment(a, b);
-        for(std::size_t m : near) {
-          const std::size_t k = ks[m];
-          const std::size_t v = border_[k];
-          if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
-          const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s)));
-          Nearest_border_element& best = nearest_[k];
-          if(d < best.distance) {
-            best.distance = d;
-            best.vertex = static_cast<std::size_t>(-1);
-            best.edge = Adjacency_tables::Edge{tt, i};
-          }
-        }
-      }
+    for(const Adjacency_tables::Edge& edge : border_edges_) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
+      near.clear();
+      tree.vertices_near_segment(points_[tr[static_cast<std::size_t>(edge.index)]],
+                                 points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]], r, std::back_inserter(near));
+      offer_edge(edge, near, [&ks](std::size_t m) { return ks[m]; });
     }
   }
 
@@ -198,6 +250,8 @@ private:
   std::vector<Point> border_points_;
   std::optional<Tree> tree_;
   std::vector<Nearest_border_element> nearest_;
+  std::vector<Adjacency_tables::Edge> border_edges_;              // in the order of their triangles
+  std::vector<std::array<std::size_t, 2>> border_edge_ends_;      // their ends, indices into `border`
   std::size_t examined_ = 0;
 };
 
@@ -222,7 +276,10 @@ constexpr double first_gap_pass_fraction = 1.0 / 32;
 /// The candidates examined are counted: border vertices crowded within the radius of each other
 /// (a dense cluster, or many long border edges over one small region) would make the listing
 /// quadratic, so past `gap_candidate_budget(border.size())` candidates the analysis stops and
-/// throws `Invalid_input` (the caller then gives a tolerance by hand).
+/// throws `Invalid_input` (the caller then gives a tolerance by hand). The second pass counts
+/// its candidates before it sorts or examines any: where it would exceed the budget, the refusal
+/// costs the count only. Whether the budget is exceeded depends on the total only, not on the
+/// order of the counts.
 template <class Geom_traits>
 std::vector<Nearest_border_element> nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
                                                             const Adjacency_tables& tables,
@@ -232,7 +289,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   if(border.empty()) return {};
   Nearest_border_search<Geom_traits> search(points, tables, border, gt);
   const double first_radius = radius * first_gap_pass_fraction;
-  search.search_all(first_radius);
+  search.search_all(first_radius, Candidates::COUNT_WHILE_SEARCHING);
   // Relative rounding of a distance evaluated in double is a few units in the last place.
   const double decided_below = first_radius * (1 - 1e-9);
   std::vector<std::size_t> undecided;
@@ -240,7 +297,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
     if(!(search.nearest()[k].distance < decided_below)) undecided.push_back(k);
   if(2 * undecided.size() > border.size()) {
     search.nearest().assign(border.size(), Nearest_border_element());
-    search.search_all(radius);
+    search.search_all(radius, Candidates::COUNT_FIRST);
   }
   else if(!undecided.empty())
     search.search_subset(undecided, radius);
