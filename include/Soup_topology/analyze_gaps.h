@@ -473,6 +473,78 @@ inline void join_sets(std::vector<std::size_t>& parent, std::size_t x, std::size
   else if(y < x) parent[x] = y;
 }
 
+/// the pieces of a soup: the connected components of `tables` (`component` of every triangle)
+/// joined where they share a vertex; returns the union-find forest over the components.
+inline std::vector<std::size_t> pieces_sharing_vertices(const Adjacency_tables& tables,
+                                                        const std::vector<Adjacency_tables::size_type>& component,
+                                                        std::size_t components)
+{
+  std::vector<std::size_t> piece(components);
+  for(std::size_t c = 0; c < components; ++c) piece[c] = c;
+  for(std::size_t v = 0; v < tables.number_of_vertices(); ++v) {
+    const auto around = tables.triangles_around_vertex(static_cast<Adjacency_tables::size_type>(v));
+    for(const auto t : around) join_sets(piece, component[*around.begin()], component[t]);
+  }
+  return piece;
+}
+
+/// the smallest border feature of every piece (indexed by its representative component;
+/// infinity for a piece without a border).
+template <class Geom_traits>
+std::vector<double> smallest_border_feature_per_piece(const std::vector<typename Geom_traits::Point_3>& pts,
+                                                      const std::vector<std::array<std::size_t, 3>>& tris,
+                                                      const Adjacency_tables& tables,
+                                                      const std::vector<Adjacency_tables::size_type>& component,
+                                                      std::vector<std::size_t>& piece, const Geom_traits& gt)
+{
+  using size_type = Adjacency_tables::size_type;
+  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  std::vector<double> piece_feature(piece.size(), std::numeric_limits<double>::infinity());
+  std::vector<double> features;
+  for(std::size_t t = 0; t < tris.size(); ++t) {
+    const auto tt = static_cast<size_type>(t);
+    if(!(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))) continue;
+    const auto& p = pts[tris[t][0]];
+    const auto& q = pts[tris[t][1]];
+    const auto& r = pts[tris[t][2]];
+    if(collinear(p, q, r)) continue;
+    features.clear();
+    add_border_features(p, q, r, tt, tables, features);
+    double& f = piece_feature[find_set(piece, component[t])];
+    for(double x : features) f = std::min(f, x);
+  }
+  return piece_feature;
+}
+
+/// the public summary of the analysis of every part, in the documented order of
+/// `analyze_gaps_per_part()`.
+inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>& parts)
+{
+  std::vector<Part_gap_analysis> out;
+  for(Gap_analysis& a : parts) {
+    std::sort(a.gaps.begin(), a.gaps.end());
+    a.feature_bound = a.border_features.minimum / 3;
+    suggest_tolerance(a);
+    Part_gap_analysis p;
+    p.triangles = a.triangles;
+    p.border_edges = a.border_edges;
+    p.border_vertices = a.border_vertices;
+    p.feature_bound = a.feature_bound;
+    p.verdict = a.verdict;
+    p.suggested_tolerance = a.suggested_tolerance;
+    p.reasoning = a.reasoning;
+    out.push_back(p);
+  }
+  std::sort(out.begin(), out.end(), [](const Part_gap_analysis& x, const Part_gap_analysis& y) {
+    if(x.triangles != y.triangles) return x.triangles > y.triangles;
+    if(x.feature_bound != y.feature_bound) return x.feature_bound > y.feature_bound;
+    if(x.border_edges != y.border_edges) return x.border_edges > y.border_edges;
+    if(x.border_vertices != y.border_vertices) return x.border_vertices > y.border_vertices;
+    return x.reasoning < y.reasoning;
+  });
+  return out;
+}
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyGaps
@@ -522,31 +594,13 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
   const Adjacency_tables tables(tris, pts.size());
 
-  // The pieces: the triangles connected by shared vertices.
+  // The pieces (the triangles connected by shared vertices) and their smallest border features:
+  // a third of that is the bound of a piece.
   std::vector<size_type> component;
   const std::size_t components = tables.number_of_connected_components(&component);
-  std::vector<std::size_t> piece(components);
-  for(std::size_t c = 0; c < components; ++c) piece[c] = c;
-  for(std::size_t v = 0; v < pts.size(); ++v) {
-    const auto around = tables.triangles_around_vertex(static_cast<size_type>(v));
-    for(const size_type t : around) internal::join_sets(piece, component[*around.begin()], component[t]);
-  }
-  // The bound of every piece: a third of its smallest border feature.
-  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
-  std::vector<double> piece_feature(components, std::numeric_limits<double>::infinity());
-  std::vector<double> features;
-  for(std::size_t t = 0; t < tris.size(); ++t) {
-    const auto tt = static_cast<size_type>(t);
-    if(!(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))) continue;
-    const Point& p = pts[tris[t][0]];
-    const Point& q = pts[tris[t][1]];
-    const Point& r = pts[tris[t][2]];
-    if(collinear(p, q, r)) continue;
-    features.clear();
-    internal::add_border_features(p, q, r, tt, tables, features);
-    double& f = piece_feature[internal::find_set(piece, component[t])];
-    for(double x : features) f = std::min(f, x);
-  }
+  std::vector<std::size_t> piece = internal::pieces_sharing_vertices(tables, component, components);
+  const std::vector<double> piece_feature =
+    internal::smallest_border_feature_per_piece(pts, tris, tables, component, piece, gt);
   // The gaps, as analyze_gaps() measures them, with their nearest elements.
   Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
@@ -600,29 +654,7 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
     if(std::isfinite(nearest[k].distance)) a.gaps.push_back(nearest[k].distance);
     else ++a.gaps_beyond_search_radius;
   }
-  std::vector<Part_gap_analysis> out;
-  for(Gap_analysis& a : parts) {
-    std::sort(a.gaps.begin(), a.gaps.end());
-    a.feature_bound = a.border_features.minimum / 3;
-    internal::suggest_tolerance(a);
-    Part_gap_analysis p;
-    p.triangles = a.triangles;
-    p.border_edges = a.border_edges;
-    p.border_vertices = a.border_vertices;
-    p.feature_bound = a.feature_bound;
-    p.verdict = a.verdict;
-    p.suggested_tolerance = a.suggested_tolerance;
-    p.reasoning = a.reasoning;
-    out.push_back(p);
-  }
-  std::sort(out.begin(), out.end(), [](const Part_gap_analysis& x, const Part_gap_analysis& y) {
-    if(x.triangles != y.triangles) return x.triangles > y.triangles;
-    if(x.feature_bound != y.feature_bound) return x.feature_bound > y.feature_bound;
-    if(x.border_edges != y.border_edges) return x.border_edges > y.border_edges;
-    if(x.border_vertices != y.border_vertices) return x.border_vertices > y.border_vertices;
-    return x.reasoning < y.reasoning;
-  });
-  return out;
+  return internal::summarize_parts(parts);
 }
 
 } // namespace Soup_topology
