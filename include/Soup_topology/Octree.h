@@ -232,18 +232,7 @@ public:
   template <typename OutputIterator>
   OutputIterator vertices_near_point(const Point_3& q, const FT& radius, OutputIterator out) const
   {
-    check_radius(radius);
-    if(empty())
-      return out;
-    const FT r2 = radius * radius;
-    const Query_point qa = approximate(q);
-    const double bound = radius_bound(r2, qa.err);
-    const double bound2 = bound * bound;
-
-    std::vector<std::size_t> found;
-    traverse(
-      [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
-      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
+    std::vector<std::size_t> found = unsorted_vertices_near_point(q, radius);
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -254,18 +243,7 @@ public:
   /// \param radius the largest distance from `q`
   std::size_t number_of_vertices_near_point(const Point_3& q, const FT& radius) const
   {
-    check_radius(radius);
-    if(empty())
-      return 0;
-    const FT r2 = radius * radius;
-    const Query_point qa = approximate(q);
-    const double bound = radius_bound(r2, qa.err);
-    const double bound2 = bound * bound;
-    std::vector<std::size_t> found;
-    traverse(
-      [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
-      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
-    return found.size();
+    return unsorted_vertices_near_point(q, radius).size();
   }
 
   /// the number of points within `radius` of the closed segment `[a,b]`: the size of the answer
@@ -275,16 +253,7 @@ public:
   /// \param radius the largest distance from the segment
   std::size_t number_of_vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius) const
   {
-    check_radius(radius);
-    if(empty())
-      return 0;
-    if(gt_.equal_3_object()(a, b))
-      return number_of_vertices_near_point(a, radius);
-    std::vector<std::size_t> found;
-    scan_near_segment(a, b, radius, strategy_, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
-      return Frame{0, {{0, 0, 0}}};
-    }, found);
-    return found.size();
+    return unsorted_vertices_near_segment(a, b, radius, strategy_).size();
   }
 
   /// calls `callback(i, near)` for every point `i`, in Morton order, with `near` the indices of
@@ -404,15 +373,7 @@ public:
   OutputIterator vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
                                        OutputIterator out, Segment_query_strategy strategy) const
   {
-    check_radius(radius);
-    if(empty())
-      return out;
-    if(gt_.equal_3_object()(a, b))
-      return vertices_near_point(a, radius, out);
-    std::vector<std::size_t> found;
-    scan_near_segment(a, b, radius, strategy, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
-      return Frame{0, {{0, 0, 0}}};
-    }, found);
+    std::vector<std::size_t> found = unsorted_vertices_near_segment(a, b, radius, strategy);
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -573,6 +534,40 @@ public:
   /// @}
 
 private:
+  /// the points within `radius` of `q`, in the order the leaves are scanned (the decisions of
+  /// `vertices_near_point()`).
+  std::vector<std::size_t> unsorted_vertices_near_point(const Point_3& q, const FT& radius) const
+  {
+    check_radius(radius);
+    std::vector<std::size_t> found;
+    if(empty())
+      return found;
+    const FT r2 = radius * radius;
+    const Query_point qa = approximate(q);
+    const double bound = radius_bound(r2, qa.err);
+    const double bound2 = bound * bound;
+    traverse(
+      [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
+      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
+    return found;
+  }
+
+  /// the points within `radius` of the closed segment `[a,b]`, unsorted (the decisions of
+  /// `vertices_near_segment()`).
+  std::vector<std::size_t> unsorted_vertices_near_segment(const Point_3& a, const Point_3& b, const FT& radius,
+                                                          Segment_query_strategy strategy) const
+  {
+    check_radius(radius);
+    if(empty())
+      return {};
+    if(gt_.equal_3_object()(a, b))
+      return unsorted_vertices_near_point(a, radius);
+    std::vector<std::size_t> found;
+    scan_near_segment(a, b, radius, strategy, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
+      return Frame{0, {{0, 0, 0}}};
+    }, found);
+    return found;
+  }
   struct Node
   {
     std::uint32_t begin, end;  // range of sorted positions
