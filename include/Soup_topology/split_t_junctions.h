@@ -79,21 +79,6 @@ struct is_split_visitor<Visitor, std::void_t<
   decltype(std::declval<Visitor&>().on_ambiguous_t_junction(std::size_t(), std::size_t(), std::size_t()))>>
   : std::true_type {};
 
-/// the visitor of a `visitor` parameter given as `Given`: `Given` itself (held by copy), or `T`
-/// for `std::reference_wrapper<T>` (held by reference).
-template <class Given>
-struct Split_visitor_type
-{
-  using type = Given;
-  static type& get(Given& held) { return held; }
-};
-template <class T>
-struct Split_visitor_type<std::reference_wrapper<T>>
-{
-  using type = T;
-  static type& get(std::reference_wrapper<T>& held) { return held.get(); }
-};
-
 template <class Kernel, class Report, class Visitor>
 class T_junction_splitter;
 
@@ -175,15 +160,15 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   using Kernel = typename NP_helper::Geom_traits;
   using FT = typename NP_helper::FT;
   using Face = typename TriangleRange::value_type;
-  using Given_visitor = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
+  using Visitor_given = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::visitor_t, NamedParameters,
                                                                            Default_split_visitor>::type;
-  using Visitor_type = internal::Split_visitor_type<Given_visitor>;
+  using Visitor_type = internal::Given_visitor<Visitor_given>;
   static_assert(internal::is_split_visitor<typename Visitor_type::type>::value,
                 "split_t_junctions: the visitor needs the member functions of Default_split_visitor");
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
-  Given_visitor visitor = CGAL::parameters::choose_parameter<Given_visitor>(
+  Visitor_given visitor = CGAL::parameters::choose_parameter<Visitor_given>(
     CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor));
   internal::T_junction_splitter<Kernel, Split_report, typename Visitor_type::type> splitter(
     NP_helper::read_points(points, np), tables, kernel, eps, Visitor_type::get(visitor));

@@ -95,22 +95,6 @@ CGAL::Comparison_result compare_distances(const Point& p, const Point& q, const 
   return compare_distance(p, q, r);
 }
 
-/// the visitor type held by `Snap_visitor_holder` for a parameter of type `Given`: `Given`
-/// itself (a copy), or `T` for `std::reference_wrapper<T>` (a reference).
-template <class Given>
-struct Snap_visitor_type
-{
-  using type = Given;
-  static type& get(Given& held) { return held; }
-};
-
-template <class T>
-struct Snap_visitor_type<std::reference_wrapper<T>>
-{
-  using type = T;
-  static type& get(std::reference_wrapper<T>& held) { return held.get(); }
-};
-
 /// the `visitor` parameter of `snap_vertices()`, held safely: a copy of the visitor given (or a
 /// `Default_snap_visitor`), or a reference to it when it is given as `std::ref(v)`.
 template <class NamedParameters>
@@ -121,7 +105,7 @@ class Snap_visitor_holder
 
 public:
   /// the type of the visitor told of the decisions.
-  using Visitor = typename Snap_visitor_type<Given>::type;
+  using Visitor = typename Given_visitor<Given>::type;
 
   /// \param np the parameters of `snap_vertices()`
   explicit Snap_visitor_holder(const NamedParameters& np)
@@ -129,7 +113,7 @@ public:
   {}
 
   /// the visitor: the copy held, or the visitor referred to.
-  Visitor& get() { return Snap_visitor_type<Given>::get(held_); }
+  Visitor& get() { return Given_visitor<Given>::get(held_); }
 
 private:
   Given held_;

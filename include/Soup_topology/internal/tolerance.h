@@ -20,6 +20,7 @@
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -101,6 +102,21 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
     return FT(0);
   }
 }
+
+/// the visitor of a `visitor` named parameter given as `Given`: `Given` itself (held by copy), or
+/// `T` for `std::reference_wrapper<T>` (held by reference, the caller's object).
+template <class Given>
+struct Given_visitor
+{
+  using type = Given;
+  static type& get(Given& held) { return held; }
+};
+template <class T>
+struct Given_visitor<std::reference_wrapper<T>>
+{
+  using type = T;
+  static type& get(std::reference_wrapper<T>& held) { return held.get(); }
+};
 
 /// the types and values that the named parameters `np` give an algorithm on the soup `points`.
 template <class PointRange, class NamedParameters>
