@@ -122,6 +122,29 @@ TEST(GapAnalysis, PigGapsAndFeaturesOverlap)
   EXPECT_LT(a.border_features.minimum, 0.3);
 }
 
+/// `soup` with its points renumbered, the corners of every triangle rotated (same triangle, same
+/// orientation) and the triangles in another order, all drawn from `seed`.
+Soup shuffled_soup(const Soup& soup, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::vector<std::size_t> order(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  Soup shuffled;
+  shuffled.points.resize(soup.points.size());
+  std::vector<std::size_t> new_index(soup.points.size());
+  for(std::size_t i = 0; i < order.size(); ++i) {
+    shuffled.points[i] = soup.points[order[i]];
+    new_index[order[i]] = i;
+  }
+  for(const Triangle& t : soup.triangles) {
+    const std::size_t r = rng() % 3;
+    shuffled.triangles.push_back({new_index[t[r]], new_index[t[(r + 1) % 3]], new_index[t[(r + 2) % 3]]});
+  }
+  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  return shuffled;
+}
+
 ST::Gap_analysis analyze_jittered(const Soup& mesh, double relative_jitter, unsigned seed, Soup& soup)
 {
   const auto generated =
@@ -152,22 +175,7 @@ TEST(GapAnalysis, ShuffledInputGivesTheSameSuggestion)
   const Soup mesh = load("clean/elephant.off");
   Soup soup;
   const ST::Gap_analysis a = analyze_jittered(mesh, 1e-6, 5, soup);
-  std::mt19937 rng(3);
-  std::vector<std::size_t> order(soup.points.size());
-  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::shuffle(order.begin(), order.end(), rng);
-  Soup shuffled;
-  shuffled.points.resize(soup.points.size());
-  std::vector<std::size_t> new_index(soup.points.size());
-  for(std::size_t i = 0; i < order.size(); ++i) {
-    shuffled.points[i] = soup.points[order[i]];
-    new_index[order[i]] = i;
-  }
-  for(const Triangle& t : soup.triangles) {
-    const std::size_t r = rng() % 3; // rotate the corners: same triangle, same orientation
-    shuffled.triangles.push_back({new_index[t[r]], new_index[t[(r + 1) % 3]], new_index[t[(r + 2) % 3]]});
-  }
-  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  const Soup shuffled = shuffled_soup(soup, 3);
   const ST::Gap_analysis b = ST::analyze_gaps(shuffled.points, shuffled.triangles);
   EXPECT_EQ(a.verdict, b.verdict);
   EXPECT_EQ(a.suggested_tolerance, b.suggested_tolerance);
@@ -523,22 +531,7 @@ TEST(GapAnalysis, AutomaticToleranceDoesNotDependOnTheOrder)
   const Soup mesh = load("clean/fandisk.off.xz");
   Soup soup;
   analyze_jittered(mesh, 1e-5, 29, soup);
-  std::mt19937 rng(31);
-  std::vector<std::size_t> order(soup.points.size());
-  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::shuffle(order.begin(), order.end(), rng);
-  Soup shuffled;
-  shuffled.points.resize(soup.points.size());
-  std::vector<std::size_t> new_index(soup.points.size());
-  for(std::size_t i = 0; i < order.size(); ++i) {
-    shuffled.points[i] = soup.points[order[i]];
-    new_index[order[i]] = i;
-  }
-  for(const Triangle& t : soup.triangles) {
-    const std::size_t r = rng() % 3;
-    shuffled.triangles.push_back({new_index[t[r]], new_index[t[(r + 1) % 3]], new_index[t[(r + 2) % 3]]});
-  }
-  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  Soup shuffled = shuffled_soup(soup, 31);
   const ST::Reconstruction_report a = automatic_repair(soup);
   const ST::Reconstruction_report b = automatic_repair(shuffled);
   EXPECT_TRUE(a.automatic_tolerance);
