@@ -4,15 +4,17 @@
 # tests; any report (memory error, leak, undefined behaviour) fails. The examples and the
 # benchmarks are left out: they run the same code on the same data as the tests. So are, by
 # default, the test programs whose code runs under the sanitizers elsewhere, to keep the build to
-# three translation units (CI has two cores): structures_tests (the tables, graph views, octree
-# and subdivision on trusted meshes, compared with brute force), repair_tests (the weld, the
-# splitter and the fixpoint: the tool built here runs the whole repair on every real and hostile
-# file that input_tests and tool_tests give it, and the fuzz_pipeline target repairs random soups
-# under AddressSanitizer) and parallel_test (run under ThreadSanitizer by
-# run_thread_sanitizer.sh). Every program that reads files or runs the tool is built.
+# two translation units (CI has two cores): structures_tests (the tables, graph views, octree
+# and subdivision on trusted meshes, compared with brute force), input_tests (the readers, which
+# the fuzz targets run under AddressSanitizer + UndefinedBehaviorSanitizer from the real files as
+# seeds, and which the tool built here runs on every hostile file of tool_tests), repair_tests
+# (the weld, the splitter and the fixpoint: the tool built here runs the whole repair on every
+# real and hostile file that tool_tests gives it, and the fuzz_pipeline target repairs random
+# soups under AddressSanitizer) and parallel_test (run under ThreadSanitizer by
+# run_thread_sanitizer.sh).
 #   ASAN_BUILD_DIR  build folder (default build-asan)
 #   ASAN_TESTS      a CTest regular expression to run a subset (default: every test)
-#   ASAN_PROGRAMS   the test programs built, separated by ';' (default: input_tests;tool_tests);
+#   ASAN_PROGRAMS   the test programs built, separated by ';' (default: tool_tests);
 #                   "all" builds every one
 #   JOBS            parallel jobs (default: nproc)
 #   ASAN_DEBUG_INFO debug information (default -g1: the line tables and function names that the
@@ -27,7 +29,7 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 # in a system header, absent from the Release build).
 flags="$flags -Wno-maybe-uninitialized"
 debug_info=${ASAN_DEBUG_INFO:--g1}
-programs=${ASAN_PROGRAMS:-input_tests;tool_tests}
+programs=${ASAN_PROGRAMS:-tool_tests}
 [ "$programs" = all ] && programs=""
 cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 $debug_info" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
