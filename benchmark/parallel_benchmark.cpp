@@ -17,6 +17,10 @@
 // - "Loop": 2 levels of loop_subdivision of the mesh split twice (1,206,528 triangles);
 // - "CLI repair": `soup_topology repair IN.stl -o OUT.stl --relative-tolerance 1e-5 --threads N`
 //   on the 4M jittered soup written as a binary STL (float coordinates), timed as a process.
+// The jittered and the T-junction soups are also repaired "step by step": the steps of the first
+// round of reconstruct_topology (Adjacency_tables, snap_vertices, split_t_junctions,
+// orient_triangle_soup) called one by one and timed each, so that every step has its speedup and
+// serial fraction.
 // Every parallel result is compared with the 1-thread result (points and triangles): a
 // difference is printed and makes the exit code 1.
 //
@@ -26,7 +30,10 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/loop_subdivision.h>
+#include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/split_t_junctions.h>
 
 #include "../test/soup_generators.h"
 #include "../test/test_utilities.h"
@@ -48,6 +55,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -137,6 +145,50 @@ void measure(const std::string& name, std::size_t threads, const std::function<v
   print_row(r, threads);
 }
 
+// The soup after each step of one round of the repair, and the wall time of each step.
+struct Round_of_steps
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::vector<double> seconds;
+};
+
+// One round of the steps that `reconstruct_topology()` repeats, called one by one on an indexed
+// soup: the tables, the weld, the T-junction split, the orientation (with the pipeline's default
+// small-feature policy, so the same work as its first round).
+Round_of_steps run_steps(const std::vector<Point>& points, const std::vector<Triangle>& triangles, double tolerance)
+{
+  Round_of_steps r{points, triangles, {}};
+  const auto np = ST::parameters::small_features(ST::Small_features::COLLAPSE, CGAL::parameters::snapping_tolerance(tolerance));
+  std::unique_ptr<ST::Adjacency_tables> tables;
+  r.seconds.push_back(timed([&] {
+    tables = std::make_unique<ST::Adjacency_tables>(r.triangles, r.points.size(), Parallel());
+  }));
+  r.seconds.push_back(timed([&] { ST::snap_vertices<Parallel>(r.points, r.triangles, *tables, np); }));
+  r.seconds.push_back(timed([&] { ST::split_t_junctions<Parallel>(r.points, r.triangles, *tables, np); }));
+  r.seconds.push_back(timed([&] { ST::orient_triangle_soup<Parallel>(r.points, r.triangles); }));
+  return r;
+}
+
+// The steps of one round on `name`'s soup, each as a row: 1 thread against all threads.
+void measure_steps(const std::string& name, std::size_t threads, const std::vector<Point>& points,
+                   const std::vector<Triangle>& triangles, double tolerance)
+{
+  run_steps(points, triangles, tolerance);
+  Round_of_steps one, all;
+  with_threads(1, [&] { one = run_steps(points, triangles, tolerance); });
+  with_threads(threads, [&] { all = run_steps(points, triangles, tolerance); });
+  if(one.points != all.points || one.triangles != all.triangles) {
+    std::printf("%s: the parallel steps differ from the 1-thread steps\n", name.c_str());
+    identical = false;
+  }
+  const char* const steps[] = {"Adjacency_tables", "snap_vertices", "split_t_junctions", "orient_triangle_soup"};
+  for(std::size_t i = 0; i < one.seconds.size(); ++i) {
+    rows.push_back(Row{name + ": " + steps[i], one.seconds[i], all.seconds[i]});
+    print_row(rows.back(), threads);
+  }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -192,6 +244,7 @@ int main(int argc, char** argv)
             [&] { q1 = p1; u1 = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(q1, u1, np); },
             [&] { qn = p1; un = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(qn, un, np); },
             [&] { return q1 == qn && u1 == un; });
+    measure_steps("4M jittered, step by step", threads, p1, t1, 1e-5 * diag);
   }
   std::vector<Explicit_triangle>().swap(exploded);
   // 3. the T-junction patch soup
@@ -204,6 +257,7 @@ int main(int argc, char** argv)
             [&] { p1 = soup.points; t1 = soup.triangles; ST::reconstruct_topology<Parallel>(p1, t1, np); },
             [&] { pn = soup.points; tn = soup.triangles; ST::reconstruct_topology<Parallel>(pn, tn, np); },
             [&] { return p1 == pn && t1 == tn; });
+    measure_steps("4M T-junction patches, step by step", threads, soup.points, soup.triangles, 1e-6 * diag);
   }
   // 4. Loop subdivision
   {
