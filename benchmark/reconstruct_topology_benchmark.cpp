@@ -21,7 +21,9 @@
 // - BM_read_and_reconstruct_STL: read_triangle_soup of a 1.2M-triangle jittered exploded binary
 //   STL, then the pipeline welding once (as the command line does) or twice (the public
 //   function on the soup read), triangles in mesh order and shuffled; "peak_rss_bytes_per_triangle"
-//   is the peak resident memory of the process so far (run it alone with --benchmark_filter).
+//   is the peak resident memory of the process so far (run it alone with --benchmark_filter);
+// - BM_read_and_reconstruct_given_STL: the same on the binary STL and tolerance named by
+//   SOUP_TOPOLOGY_BENCHMARK_STL and SOUP_TOPOLOGY_BENCHMARK_TOLERANCE (skipped without them).
 // Counter "border_edges": the border edges left (the input is a closed bunny: 0 is the answer).
 // Target (issue 5): ours closed, at least 10x faster than CGAL, no more border edges than CGAL.
 //
@@ -52,6 +54,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <random>
@@ -301,6 +304,45 @@ BENCHMARK_CAPTURE(BM_read_and_reconstruct_STL, 1M_jitter_welded_twice, Order::me
   ->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK_CAPTURE(BM_read_and_reconstruct_STL, 1M_jitter_shuffled_welded_once, Order::shuffled, Weld::once)
   ->Unit(benchmark::kMillisecond)->Iterations(2);
+
+// The same on a binary STL named by the environment: SOUP_TOPOLOGY_BENCHMARK_STL, with the
+// absolute tolerance SOUP_TOPOLOGY_BENCHMARK_TOLERANCE (for example the exploded torus of
+// benchmark/exploded_torus.py). It is the in-process side of the ratio with the whole process
+// `soup_topology repair FILE -o OUT --tolerance T --threads 1`: one thread, the file read and
+// welded while decoded, then the pipeline trusting that weld. Skipped when the file is not given.
+void BM_read_and_reconstruct_given_STL(benchmark::State& state)
+{
+  const char* file = std::getenv("SOUP_TOPOLOGY_BENCHMARK_STL");
+  const char* tolerance_text = std::getenv("SOUP_TOPOLOGY_BENCHMARK_TOLERANCE");
+  if(!file || !tolerance_text) {
+    state.SkipWithError("set SOUP_TOPOLOGY_BENCHMARK_STL and SOUP_TOPOLOGY_BENCHMARK_TOLERANCE");
+    for(auto _ : state) {}
+    return;
+  }
+  const double tolerance = std::strtod(tolerance_text, nullptr);
+  ST::Reconstruction_report report;
+  double read_ms = 0, repair_ms = 0;
+  std::size_t triangles_read = 0;
+  for(auto _ : state) {
+    const double t0 = thread_cpu_ms();
+    std::vector<Point> points;
+    std::vector<Index_triangle> triangles;
+    triangles_read = ST::IO::read_triangle_soup(file, points, triangles).input_triangles;
+    const double t1 = thread_cpu_ms();
+    report = ST::internal::reconstruct_exactly_welded_soup(points, triangles,
+                                                           CGAL::parameters::snapping_tolerance(tolerance));
+    read_ms = t1 - t0;
+    repair_ms = thread_cpu_ms() - t1;
+    benchmark::DoNotOptimize(triangles.data());
+  }
+  report_counters(state, report);
+  state.counters["triangles"] = static_cast<double>(triangles_read);
+  state.counters["read_ms"] = read_ms;
+  state.counters["repair_ms"] = repair_ms;
+  state.counters["peak_rss_bytes_per_triangle"] = peak_resident_bytes() / static_cast<double>(triangles_read);
+  state.SetLabel(std::string(file) + " --tolerance " + tolerance_text);
+}
+BENCHMARK(BM_read_and_reconstruct_given_STL)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 #define SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(name, iterations)                                          \
   BENCHMARK_CAPTURE(name, 1M_exact, Size::one_million, Jitter::exact)                                   \

@@ -11,6 +11,7 @@
 #include <Soup_topology/IO/STL.h>
 #include <Soup_topology/IO/VRML.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/triangle_strips.h>
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
@@ -1126,6 +1127,8 @@ TEST(ReadTriangleSoup, Issue13BinarySTLWeldedWhileReadEqualsIndexTriangles)
       const ST::IO::Soup_read_report r = ST::IO::read_triangle_soup(stl.data(), stl.size(), "stl", points, triangles);
       EXPECT_EQ(points, expected_points);
       EXPECT_EQ(triangles, expected_triangles);
+      // the points are counted before they are stored: no spare room is held
+      EXPECT_EQ(points.capacity(), points.size());
       EXPECT_EQ(r.input_triangles, ir.input_triangles);
       EXPECT_EQ(r.input_vertices, ir.input_corners);
       EXPECT_EQ(r.exact_duplicates, ir.input_corners - ir.vertices);
@@ -1160,6 +1163,33 @@ TEST(ReadTriangleSoup, Issue13NumbersParseAsTheCLibraryParsesThem)
       EXPECT_EQ(std::memcmp(&f, &expected_float, sizeof f), 0) << f;
     }
   }
+}
+
+// Issue 13: the STL writer finds points that float rounding would merge by hashing; the pair it
+// names is still the first in lexicographic order of the rounded points, as a sort names it.
+TEST(WriteTriangleSoup, Issue13STLRoundingNamesTheLexicographicallyFirstPair)
+{
+  // Points 1 and 3 round to the same float point, and so do points 2 and 4: (0, 1, 0) comes
+  // before (1, 0, 0), so points 2 and 4 are named although 3 meets 1 first in index order.
+  const std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(1 + 1e-12, 0, 0),
+                                     Point(0, 1 + 1e-12, 0), Point(0, 0, 1)};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {5, 3, 4}};
+  std::ostringstream out;
+  try {
+    ST::IO::write_STL_triangle_soup(out, points, triangles);
+    ADD_FAILURE() << "no error";
+  } catch(const ST::IO::Write_error& e) {
+    EXPECT_NE(std::string(e.what()).find("points 2 and 4 "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("become the same point in float"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(out.str().empty());
+  // Points equal as doubles (0 and -0) are one point for a reader too: written.
+  const std::vector<Point> zeros = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(-0.0, 0, 0),
+                                    Point(0, 0, 1)};
+  const std::vector<Triangle> fan = {{0, 1, 2}, {3, 2, 4}};
+  std::ostringstream written;
+  EXPECT_NO_THROW(ST::IO::write_STL_triangle_soup(written, zeros, fan));
+  EXPECT_EQ(written.str().size(), 84u + 2u * 50u);
 }
 
 } // namespace

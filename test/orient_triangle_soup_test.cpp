@@ -412,6 +412,86 @@ TEST(OrientTriangleSoup, Issue21HostileSoupUnderPermutations)
   }
 }
 
+// The repeated triangles of `triangles` removed as a comparison sort of their sorted corners
+// finds them: triangles on the same three vertices are grouped, the orientation most of a group
+// has is kept (on a tie, the rotation increasing in the lexicographic ranks of the points is
+// decisive, compared with the first triangle of the group), from its first occurrence. Returns
+// the number removed.
+std::size_t remove_repeated_triangles_by_sorting(const std::vector<Point>& points, std::vector<Triangle>& triangles)
+{
+  const std::size_t n = triangles.size();
+  std::vector<std::pair<Triangle, std::size_t>> keys(n);
+  for(std::size_t t = 0; t < n; ++t) {
+    Triangle k = triangles[t];
+    std::sort(k.begin(), k.end());
+    keys[t] = {k, t};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::size_t> order(points.size()), rank(points.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return points[a] < points[b]; });
+  for(std::size_t r = 0; r < order.size(); ++r) rank[order[r]] = r;
+  auto increasing_by = [](const Triangle& t, const std::vector<std::size_t>* key) {
+    auto k = [&](std::size_t v) { return key ? (*key)[v] : v; };
+    return int(k(t[0]) < k(t[1])) + int(k(t[1]) < k(t[2])) + int(k(t[2]) < k(t[0])) == 2;
+  };
+  std::vector<char> drop(n, 0);
+  std::size_t removed = 0;
+  for(std::size_t g = 0; g < n;) {
+    std::size_t e = g + 1;
+    while(e < n && keys[e].first == keys[g].first) ++e;
+    std::size_t up = 0;
+    for(std::size_t k = g; k < e; ++k) up += increasing_by(triangles[keys[k].second], nullptr) ? 1u : 0u;
+    bool keep_increasing = 2 * up > e - g;
+    if(2 * up == e - g) {
+      const Triangle& first = triangles[keys[g].second];
+      keep_increasing = increasing_by(first, nullptr) == increasing_by(first, &rank);
+    }
+    bool kept = false;
+    for(std::size_t k = g; k < e; ++k) {
+      const std::size_t t = keys[k].second;
+      if(!kept && increasing_by(triangles[t], nullptr) == keep_increasing) kept = true;
+      else { drop[t] = 1; ++removed; }
+    }
+    g = e;
+  }
+  std::vector<Triangle> kept;
+  for(std::size_t t = 0; t < n; ++t)
+    if(!drop[t]) kept.push_back(triangles[t]);
+  triangles.swap(kept);
+  return removed;
+}
+
+TEST(OrientTriangleSoup, Issue13RepeatedTrianglesFoundByHashingAsBySorting)
+{
+  // Triangles drawn among few points, so that most of them repeat, in both orientations and
+  // with ties; the points in random places, so that their ranks are not their indices.
+  std::mt19937 rng(13);
+  for(int trial = 0; trial < 20; ++trial) {
+    const std::size_t number_of_points = 5 + rng() % 6;
+    std::vector<Point> points;
+    std::uniform_real_distribution<double> coordinate(-1, 1);
+    for(std::size_t i = 0; i < number_of_points; ++i) points.emplace_back(coordinate(rng), coordinate(rng), coordinate(rng));
+    std::vector<Triangle> triangles;
+    const std::size_t count = 1 + rng() % 400;
+    while(triangles.size() < count) {
+      const Triangle t = {rng() % number_of_points, rng() % number_of_points, rng() % number_of_points};
+      if(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) triangles.push_back(t);
+    }
+    std::vector<Point> p1 = points, p2 = points;
+    std::vector<Triangle> t1 = triangles, t2 = triangles;
+    const std::size_t removed = remove_repeated_triangles_by_sorting(points, t2);
+    const ST::Orientation_report r1 = ST::orient_triangle_soup(p1, t1);
+    const ST::Orientation_report r2 = ST::orient_triangle_soup(p2, t2);
+    EXPECT_EQ(r1.duplicate_triangles, removed) << "trial " << trial;
+    EXPECT_EQ(r2.duplicate_triangles, 0u) << "trial " << trial;
+    EXPECT_EQ(t1, t2) << "trial " << trial;
+    EXPECT_EQ(p1, p2) << "trial " << trial;
+    EXPECT_EQ(r1.orientation_flips, r2.orientation_flips) << "trial " << trial;
+    EXPECT_EQ(r1.duplicated_points, r2.duplicated_points) << "trial " << trial;
+  }
+}
+
 TEST(OrientTriangleSoup, NonManifoldPiecesAreSeparatedIntoValidMeshes)
 {
   // Two cubes sharing an edge: two closed cubes, the edge's two points duplicated once each.

@@ -927,6 +927,65 @@ TEST(ReconstructTopology, Issue13WeldedSoupEntryEqualsThePublicFunction)
   }
 }
 
+// Everything a visitor of the pipeline is told, in order, as (what, index, index, index).
+struct Recording_visitor
+{
+  std::vector<std::array<std::size_t, 4>> told;
+  void on_merge(std::size_t d, std::size_t r) { told.push_back({0, d, r, 0}); }
+  void on_refusal(std::size_t v, std::size_t r, ST::Refusal_reason) { told.push_back({1, v, r, 0}); }
+  void on_split(std::size_t v, std::size_t a, std::size_t b) { told.push_back({2, v, a, b}); }
+  void on_split_refusal(std::size_t v, std::size_t a, std::size_t b, ST::Split_refusal_reason)
+  { told.push_back({3, v, a, b}); }
+  void on_ambiguous_t_junction(std::size_t v, std::size_t a, std::size_t b) { told.push_back({4, v, a, b}); }
+  void on_ambiguous_site(std::size_t v) { told.push_back({5, v, 0, 0}); }
+};
+
+// On a soup read exactly welded, the entry point that trusts the weld tells a visitor the same
+// welds, refusals, splits and sites, with the same indices of the input, as the public function
+// (which carries the index of every point from its own weld); the output is the same. Real
+// meshes, and bunny00 cut into patches with T-junctions and jittered copies of their borders.
+TEST(ReconstructTopology, Issue13WeldedSoupEntryTellsTheVisitorTheSameIndices)
+{
+  struct Input
+  {
+    std::string name;
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    double tolerance;
+  };
+  std::vector<Input> inputs;
+  for(const auto& [file, tolerance] : std::vector<std::pair<std::string, double>>{{"cgal_repair/pig.stl.xz", 0.3},
+                                                                                   {"cad/ALSTOM_TEST4.off", 1e-3}}) {
+    auto [points, triangles] = load<Point>(file);
+    inputs.push_back({file, points, triangles, tolerance});
+  }
+  {
+    auto [points, triangles] = load<Point>("clean/bunny00.off.xz");
+    const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    auto soup = soup_test::t_junction_soup(points, triangles, 5, 1e-7 * diag / std::sqrt(3.0), 17);
+    inputs.push_back({"bunny00 with T-junctions", soup.points, soup.triangles, 1e-6 * diag});
+  }
+  for(Input& in : inputs) {
+    SCOPED_TRACE(in.name);
+    auto p2 = in.points;
+    auto t2 = in.triangles;
+    Recording_visitor v1, v2;
+    const Reconstruction_report r1 = ST::reconstruct_topology(
+      in.points, in.triangles, CGAL::parameters::snapping_tolerance(in.tolerance).visitor(std::ref(v1)));
+    const Reconstruction_report r2 = ST::internal::reconstruct_exactly_welded_soup(
+      p2, t2, CGAL::parameters::snapping_tolerance(in.tolerance).visitor(std::ref(v2)));
+    EXPECT_EQ(r1.exact_duplicates, 0u);
+    EXPECT_FALSE(v1.told.empty());
+    if(r1.split_triangles > 0) {
+      EXPECT_TRUE(std::any_of(v1.told.begin(), v1.told.end(), [](const auto& x) { return x[0] == 2; }));
+    }
+    EXPECT_EQ(v1.told, v2.told);
+    EXPECT_EQ(in.points, p2);
+    EXPECT_EQ(in.triangles, t2);
+    expect_same_report(r1, r2);
+  }
+}
+
 // An exploded, jittered soup and the same soup with its triangles shuffled and their corners
 // rotated: read (index_triangles) and repaired, the same surface and the same counts.
 TEST(ReconstructTopology, Issue13ShuffledExplodedSoupGivesTheSameSurface)

@@ -189,7 +189,12 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
   // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
   // of the point of corner i (a first corner is read before any later one is renumbered).
   std::vector<std::uint32_t> point_of = first_equal_points(corners, corner_point);
+  // The points are counted first so that `points` holds exactly them, without the spare room
+  // of a vector grown one point at a time.
+  std::size_t distinct = 0;
+  for(std::size_t i = 0; i < corners; ++i) distinct += point_of[i] == i ? 1u : 0u;
   points.clear();
+  points.reserve(distinct);
   for(std::size_t i = 0; i < corners; ++i) {
     if(point_of[i] == i) {
       point_of[i] = static_cast<std::uint32_t>(points.size());

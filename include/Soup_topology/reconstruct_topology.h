@@ -159,6 +159,13 @@ PointOut convert_point(const PointIn& p)
     return PointOut(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z())));
 }
 
+/// the index in the input of the point that the pipeline's point `k` is: `input_index[k]`, or
+/// `k` itself while `input_index` is empty (no point has been removed or moved yet).
+inline std::size_t input_point_index(const std::vector<std::uint32_t>& input_index, std::size_t k)
+{
+  return input_index.empty() ? k : input_index[k];
+}
+
 /// the visitor that `reconstruct_topology()` gives `snap_vertices()`: records every weld for the
 /// displacement and tells the caller's visitor, with the caller's indices.
 template <class User_visitor>
@@ -167,27 +174,28 @@ struct Pipeline_visitor
   std::vector<std::uint32_t>* merged_into;
   const std::vector<std::uint32_t>* input_index;
   User_visitor* user;
+  std::size_t in(std::size_t k) const { return input_point_index(*input_index, k); }
   void on_merge(std::size_t duplicate, std::size_t representative)
   {
     (*merged_into)[duplicate] = static_cast<std::uint32_t>(representative);
-    user->on_merge((*input_index)[duplicate], (*input_index)[representative]);
+    user->on_merge(in(duplicate), in(representative));
   }
   void on_refusal(std::size_t vertex, std::size_t representative, Refusal_reason reason)
   {
-    user->on_refusal((*input_index)[vertex], (*input_index)[representative], reason);
+    user->on_refusal(in(vertex), in(representative), reason);
   }
   // Given to `split_t_junctions()` when the caller's visitor is also a split visitor.
   void on_split(std::size_t vertex, std::size_t a, std::size_t b)
   {
-    user->on_split((*input_index)[vertex], (*input_index)[a], (*input_index)[b]);
+    user->on_split(in(vertex), in(a), in(b));
   }
   void on_split_refusal(std::size_t vertex, std::size_t a, std::size_t b, Split_refusal_reason reason)
   {
-    user->on_split_refusal((*input_index)[vertex], (*input_index)[a], (*input_index)[b], reason);
+    user->on_split_refusal(in(vertex), in(a), in(b), reason);
   }
   void on_ambiguous_t_junction(std::size_t vertex, std::size_t a, std::size_t b)
   {
-    user->on_ambiguous_t_junction((*input_index)[vertex], (*input_index)[a], (*input_index)[b]);
+    user->on_ambiguous_t_junction(in(vertex), in(a), in(b));
   }
 };
 
@@ -226,7 +234,10 @@ enum class Exact_weld { TO_DO, DONE };
 
 /// the steps of the pipeline on a validated soup, in the order `reconstruct_soup()` calls them.
 /// It works on `pts`, the points converted to the traits' points, and repairs `triangles` in
-/// place; `input_index[k]` is the index in the input of the point that `pts[k]` is.
+/// place; `input_index[k]` is the index in the input of the point that `pts[k]` is. While no
+/// point has been removed `input_index` stays empty, meaning that every point is its own input
+/// point (`input_point_index()`): the weld and the splits do not remove points, so a soup that
+/// arrives exactly welded carries no such table until `finish()`.
 /// `ConcurrencyTag` is passed on to every step.
 template <class Geom_traits, class TriangleRange, class ConcurrencyTag = CGAL::Sequential_tag>
 class Soup_reconstruction
@@ -249,8 +260,7 @@ public:
     pts_.clear();
     pts_.reserve(report_.input_points);
     for(const auto& e : points) pts_.push_back(convert_point<Point, FT>(get(pm, e)));
-    input_index_.resize(pts_.size());
-    for(std::size_t i = 0; i < input_index_.size(); ++i) input_index_[i] = static_cast<std::uint32_t>(i);
+    input_index_.clear();
   }
 
   /// moves `points` into `pts` (leaving `points` empty), when they are already the traits' points.
@@ -260,8 +270,7 @@ public:
     report_.input_triangles = triangles_.size();
     pts_.clear();
     pts_.swap(points);
-    input_index_.resize(pts_.size());
-    for(std::size_t i = 0; i < input_index_.size(); ++i) input_index_[i] = static_cast<std::uint32_t>(i);
+    input_index_.clear();
   }
 
   /// merges exactly equal points (a merged point is known by the first of the equal input
@@ -269,9 +278,10 @@ public:
   void weld_exact_duplicates()
   {
     const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map<ConcurrencyTag>(pts_, triangles_);
-    report_.exact_duplicates = input_index_.size() - pts_.size();
+    report_.exact_duplicates = exact_index.size() - pts_.size();
     std::vector<std::uint32_t> first(pts_.size());
-    for(std::size_t i = exact_index.size(); i-- > 0;) first[exact_index[i]] = input_index_[i];
+    for(std::size_t i = exact_index.size(); i-- > 0;)
+      first[exact_index[i]] = static_cast<std::uint32_t>(input_point_index(input_index_, i));
     input_index_.swap(first);
     report_.collapsed_triangles = remove_collapsed_triangles(triangles_);
   }
@@ -341,7 +351,7 @@ public:
     sites.erase(std::unique(sites.begin(), sites.end()), sites.end());
     report_.ambiguous_sites = sites.size();
     if constexpr(tells_ambiguous_sites<User_visitor>::value)
-      for(std::size_t v : sites) user_visitor.on_ambiguous_site(input_index_[v]);
+      for(std::size_t v : sites) user_visitor.on_ambiguous_site(input_point_index(input_index_, v));
   }
 
   /// how far the points moved: every input point follows its exact-weld image (same
@@ -373,9 +383,15 @@ public:
     tables_.reset();
     const std::size_t before = pts_.size();
     const std::vector<std::uint32_t> kept_index = remove_unreferenced_points(pts_, triangles_);
-    for(std::size_t i = 0; i < kept_index.size(); ++i)
-      if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = input_index_[i];
-    input_index_.resize(pts_.size());
+    if(input_index_.empty()) {
+      input_index_.resize(pts_.size());
+      for(std::size_t i = 0; i < kept_index.size(); ++i)
+        if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = static_cast<std::uint32_t>(i);
+    } else {
+      for(std::size_t i = 0; i < kept_index.size(); ++i)
+        if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = input_index_[i];
+      input_index_.resize(pts_.size());
+    }
     report_.removed_points = before - pts_.size();
     report_.output_points = pts_.size();
     report_.output_triangles = triangles_.size();

@@ -15,6 +15,7 @@
 
 #include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/internal/Point_hash_map.h>
 #include <Soup_topology/internal/soup_checks.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -60,6 +61,40 @@ void for_each_triangle(const TriangleRange& triangles, const Function& f)
     const std::array<std::size_t, 3> v = Soup_topology::internal::triangle_indices(t);
     f(v[0], v[1], v[2]);
   }
+}
+
+// Whether two of the points `order` lists have different coordinates (as doubles) but equal
+// `rounded` points; `rounded[i]` is point i rounded to float. An open-addressing hash table of
+// the rounded points, filled in the order of `order`.
+template <class PointRange, class Float_point>
+bool has_distinct_points_equal_in_float(const PointRange& points, const std::vector<Float_point>& rounded,
+                                        const std::vector<std::size_t>& order)
+{
+  std::size_t capacity = 16;
+  while(capacity < 2 * order.size()) capacity *= 2;
+  const std::size_t mask = capacity - 1;
+  constexpr std::size_t empty = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> slots(capacity, empty);
+  // + 0.0 makes -0.0 and 0.0, which compare equal, the same bits
+  auto bits = [](double x) { return Soup_topology::internal::double_bits(x + 0.0); };
+  using Soup_topology::internal::mix_bits;
+  for(const std::size_t i : order) {
+    const Float_point& r = rounded[i];
+    std::size_t h = static_cast<std::size_t>(
+      mix_bits(bits(r.x()) ^ mix_bits(bits(r.y()) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(bits(r.z())) << 1)));
+    for(;; h = (h + 1) & mask) {
+      std::size_t& slot = slots[h & mask];
+      if(slot == empty) {
+        slot = i;
+        break;
+      }
+      if(rounded[slot] == r) {
+        if(write_coordinates(points[slot]) != write_coordinates(points[i])) return true;
+        break;
+      }
+    }
+  }
+  return false;
 }
 
 template <class PointRange>
@@ -241,9 +276,14 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
     order.push_back(i);
   }
   // Distinct points that become equal: a reader welds them, and the mesh read back changes.
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return rounded[a] < rounded[b] || (rounded[a] == rounded[b] && a < b);
-  });
+  // Whether there is such a pair is found by hashing; only then are the points sorted, so that
+  // the pair named is the first in lexicographic order whatever the hashing.
+  if(internal::has_distinct_points_equal_in_float(points, rounded, order))
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return rounded[a] < rounded[b] || (rounded[a] == rounded[b] && a < b);
+    });
+  else
+    order.clear();
   for(std::size_t k = 1; k < order.size(); ++k) {
     const std::size_t a = order[k - 1], b = order[k];
     if(rounded[a] == rounded[b] && internal::write_coordinates(points[a]) != internal::write_coordinates(points[b]))

@@ -9,6 +9,7 @@
 #define SOUP_TOPOLOGY_INTERNAL_ORIENT_SOUP_H
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/Point_hash_map.h>
 #include <Soup_topology/internal/separate_non_manifold.h>
 #include <Soup_topology/internal/soup_checks.h>
 
@@ -20,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -132,50 +134,95 @@ private:
 
   // --- Step 1: repeated triangles --------------------------------------------------------------
 
+  // The three indices of triangle t, sorted.
+  std::array<std::size_t, 3> sorted_corners(std::size_t t) const
+  {
+    std::array<std::size_t, 3> k = {corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t)};
+    std::sort(k.begin(), k.end());
+    return k;
+  }
+
+  // The pairs (first, t) of the triangles t that have the same three vertices as an earlier
+  // triangle, `first` being the first such triangle; in increasing order of t. The triangles are
+  // found by an open-addressing hash table of the first triangle of every set of vertices, the
+  // soup read once in index order.
+  std::vector<std::pair<std::size_t, std::size_t>> find_repeated_triangles() const
+  {
+    const std::size_t n = triangles_.size();
+    std::vector<std::pair<std::size_t, std::size_t>> repeats;
+    if(n < 2) return repeats;
+    std::size_t capacity = 16;
+    while(capacity < 2 * n) capacity *= 2;
+    const std::size_t mask = capacity - 1;
+    constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
+    const bool narrow = n < static_cast<std::size_t>(empty);
+    // 32-bit slots when the triangles fit (always, below 2^32 - 1 triangles), else 64-bit ones.
+    std::vector<std::uint32_t> slots32(narrow ? capacity : 0, empty);
+    std::vector<std::size_t> slots64(narrow ? 0 : capacity, static_cast<std::size_t>(-1));
+    for(std::size_t t = 0; t < n; ++t) {
+      const std::array<std::size_t, 3> k = sorted_corners(t);
+      std::size_t h = static_cast<std::size_t>(
+        mix_bits(std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ mix_bits(std::uint64_t(k[1]) + 0x632be59bd9b4e019ULL) ^
+                 (mix_bits(std::uint64_t(k[2])) << 1)));
+      for(;; h = (h + 1) & mask) {
+        const std::size_t slot = h & mask;
+        const std::size_t other = narrow ? (slots32[slot] == empty ? static_cast<std::size_t>(-1) : slots32[slot])
+                                         : slots64[slot];
+        if(other == static_cast<std::size_t>(-1)) {
+          if(narrow) slots32[slot] = static_cast<std::uint32_t>(t);
+          else slots64[slot] = t;
+          break;
+        }
+        if(sorted_corners(other) == k) {
+          repeats.emplace_back(other, t);
+          break;
+        }
+      }
+    }
+    return repeats;
+  }
+
   // Triangles on the same three vertices are one: the orientation kept is the one most of them
   // have (on a tie, the increasing rotation of the point ranks), from its first occurrence.
   void remove_repeated_triangles()
   {
+    std::vector<std::pair<std::size_t, std::size_t>> repeats = find_repeated_triangles();
+    if(repeats.empty()) return;
+    // the repeats of one set of vertices together, each set's in increasing index order
+    std::stable_sort(repeats.begin(), repeats.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     const std::size_t n = triangles_.size();
-    std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys(n);
-    for(std::size_t t = 0; t < n; ++t) {
-      std::array<std::size_t, 3> k = {corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t)};
-      std::sort(k.begin(), k.end());
-      keys[t] = {k, t};
-    }
-    std::sort(keys.begin(), keys.end());
     std::vector<char> drop(n, 0);
     auto by_index = [](std::size_t v) { return v; };
-    for(std::size_t g = 0; g < n;) {
+    auto increasing = [&](std::size_t t) {
+      return is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
+                                    by_index);
+    };
+    std::vector<std::size_t> group;
+    for(std::size_t g = 0; g < repeats.size();) {
       std::size_t e = g + 1;
-      while(e < n && keys[e].first == keys[g].first) ++e;
-      if(e - g > 1) {
-        counts_.duplicate_triangles += e - g - 1;
-        auto increasing = [&](std::size_t t) {
-          return is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
-                                        by_index);
-        };
-        std::size_t up = 0;
-        for(std::size_t k = g; k < e; ++k) up += increasing(keys[k].second) ? 1u : 0u;
-        bool keep_increasing = 2 * up > e - g;
-        if(2 * up == e - g) {
-          const std::vector<size_type>& rank = point_ranks();
-          const std::size_t t = keys[g].second;
-          const bool rank_increasing =
-            is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
-                                   [&](std::size_t v) { return rank[v]; });
-          keep_increasing = (increasing(t) == rank_increasing);
-        }
-        bool kept = false;
-        for(std::size_t k = g; k < e; ++k) {
-          const std::size_t t = keys[k].second; // in increasing index order within the group
-          if(!kept && increasing(t) == keep_increasing) kept = true;
-          else drop[t] = 1;
-        }
+      while(e < repeats.size() && repeats[e].first == repeats[g].first) ++e;
+      group.assign(1, repeats[g].first);
+      for(std::size_t k = g; k < e; ++k) group.push_back(repeats[k].second);
+      counts_.duplicate_triangles += group.size() - 1;
+      std::size_t up = 0;
+      for(std::size_t t : group) up += increasing(t) ? 1u : 0u;
+      bool keep_increasing = 2 * up > group.size();
+      if(2 * up == group.size()) {
+        const std::vector<size_type>& rank = point_ranks();
+        const std::size_t t = group.front();
+        const bool rank_increasing =
+          is_increasing_rotation(corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t),
+                                 [&](std::size_t v) { return rank[v]; });
+        keep_increasing = (increasing(t) == rank_increasing);
+      }
+      bool kept = false;
+      for(std::size_t t : group) { // in increasing index order
+        if(!kept && increasing(t) == keep_increasing) kept = true;
+        else drop[t] = 1;
       }
       g = e;
     }
-    if(counts_.duplicate_triangles == 0) return;
     std::size_t kept = 0;
     for(std::size_t t = 0; t < n; ++t)
       if(!drop[t]) {
