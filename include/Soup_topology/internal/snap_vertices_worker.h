@@ -456,9 +456,36 @@ private:
   }
 
   // Geometric validity: no triangle may become degenerate or flip; refuse until stable. Each
-  // pass checks every touched triangle against the moves of the previous pass and cancels the
+  // pass checks the touched triangles against the moves of the previous pass and cancels the
   // moves of all failing triangles at once, so the result does not depend on the order in which
   // the triangles are stored.
+  //
+  // Only the first pass of each kind checks every touched triangle; a later pass checks what the
+  // cancellations since the previous pass of its kind can change, which gives the same
+  // decisions:
+  // - the verdict of `cancel_failing_moves()` on a triangle depends on the final vertices of its
+  //   three corners only, and a cancellation changes the final vertex of the cancelled vertex
+  //   only (a representative never moves, so no other vertex ends at a moving one). A triangle
+  //   with no cancelled corner since its last check has the verdict of that check: it passed
+  //   (a failing triangle has all its moving corners cancelled), and passes again. So the
+  //   triangles around the vertices cancelled since the previous pass are the only ones that
+  //   can fail, and a pass that checks them finds the same failing triangles as a pass over all;
+  // - under `cancel_uncovered_collapses()` a collapsing triangle with image (p, q) is covered
+  //   exactly when some non-collapsing triangle has final vertices p and q (p alone for a point):
+  //   such a triangle has a corner ending at p and one ending at q, which are ends of images or
+  //   vertices merged into them, and every covering pair is made of such corners. Cancellations
+  //   never make a triangle collapse (the cancelled vertex ends at itself, which no other vertex
+  //   does). A collapsing triangle t without a cancelled corner keeps its image (p, q). A
+  //   triangle K that covered it and no longer does lost a corner ending at p or at q (if both
+  //   stay, K keeps p and q, and its cancelled corners end at themselves, distinct from them):
+  //   p or q was the target of a cancelled vertex. A triangle that was uncovered had its moving
+  //   corners cancelled. So the collapsing triangles around the cancelled vertices and those
+  //   with an end that was the target of a cancelled vertex are the only ones whose verdict can
+  //   change.
+  // The cancellations of a pass are then the same, in the same vertex order, with the same
+  // reasons, the same visitor calls and the same counts. Each vertex is cancelled once, so the
+  // passes after the first check the triangles around the cancelled vertices (and, for the
+  // collapses, around the clusters that lost a member) rather than every touched triangle.
   void guard_against_degenerate_and_flipped_triangles()
   {
     std::vector<char> is_touched(tables_.number_of_triangles(), 0);
@@ -472,37 +499,73 @@ private:
     } while(collapse_ && cancel_uncovered_collapses());
   }
 
-  // One pass of the guard; `true` if some move was cancelled.
-  bool cancel_failing_moves()
+  // `true` if two corners of the triangle `t` end at one vertex (only under COLLAPSE: clusters
+  // hold no two vertices of one triangle otherwise).
+  bool collapses(size_type t) const
   {
-    cancelled_.clear();
-    for(size_type t : touched_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
-      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
-      if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) continue;
-      // Two corners merged (only under COLLAPSE: clusters hold no two vertices of one triangle
-      // otherwise): the triangle is removed, nothing of it to keep.
-      if(n0 == n1 || n1 == n2 || n2 == n0) continue;
-      Refusal_reason why = Refusal_reason::FLIP;
-      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) continue;
-      if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
-        continue;
-      for(size_type v : tr)
-        if(target_[v] != none) cancelled_.emplace_back(v, why);
-    }
-    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
-    std::sort(cancelled_.begin(), cancelled_.end(), [](const auto& x, const auto& y) {
-      return x.first < y.first || (x.first == y.first && x.second < y.second);
-    });
+    const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+    const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+    return n0 == n1 || n1 == n2 || n2 == n0;
+  }
+
+  // Marks `t` as listed in the current pass; `false` if it was already.
+  bool mark_for_pass(size_type t)
+  {
+    if(pass_mark_.empty()) pass_mark_.assign(tables_.number_of_triangles(), 0);
+    if(pass_mark_[t] == pass_id_) return false;
+    pass_mark_[t] = pass_id_;
+    return true;
+  }
+
+  // Cancels the moves listed in `cancelled_` (sorted: by vertex, then reason), each vertex once
+  // with its first reason; `true` if some move was cancelled.
+  bool cancel_listed_moves()
+  {
+    std::sort(cancelled_.begin(), cancelled_.end());
     bool changed = false;
     for(const auto& [v, why] : cancelled_) {
       if(target_[v] == none) continue;
       visitor_.on_refusal(v, target_[v], why);
-      if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate; else ++report_.refused_flip;
+      if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate;
+      else if(why == Refusal_reason::UNCOVERED_COLLAPSE) ++report_.refused_uncovered_collapse;
+      else ++report_.refused_flip;
+      cancelled_since_moves_check_.push_back(v);
+      cancelled_since_collapses_check_.emplace_back(v, target_[v]);
       target_[v] = none;
       changed = true;
     }
     return changed;
+  }
+
+  // One pass of the guard; `true` if some move was cancelled.
+  bool cancel_failing_moves()
+  {
+    cancelled_.clear();
+    auto check = [&](size_type t) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) return;
+      // Two corners merged: the triangle is removed, nothing of it to keep.
+      if(n0 == n1 || n1 == n2 || n2 == n0) return;
+      Refusal_reason why = Refusal_reason::FLIP;
+      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) return;
+      if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
+        return;
+      for(size_type v : tr)
+        if(target_[v] != none) cancelled_.emplace_back(v, why);
+    };
+    if(!moves_checked_) {
+      moves_checked_ = true;
+      for(size_type t : touched_) check(t);
+    } else {
+      ++pass_id_;
+      for(size_type v : cancelled_since_moves_check_)
+        for(size_type t : tables_.triangles_around_vertex(v))
+          if(mark_for_pass(t)) check(t);
+    }
+    cancelled_since_moves_check_.clear();
+    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
+    return cancel_listed_moves();
   }
 
   // Under `Small_features::COLLAPSE`: a triangle two of whose corners merge collapses onto an edge
@@ -513,29 +576,63 @@ private:
   // depend on the order of the triangles); `true` if some move was cancelled.
   bool cancel_uncovered_collapses()
   {
-    std::vector<size_type> collapsing, image_ends;
-    is_collapsing_.resize(tables_.number_of_triangles(), 0);
-    is_image_end_.resize(points_.size(), 0);
-    for(size_type t : touched_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
-      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
-      if(n0 != n1 && n1 != n2 && n2 != n0) continue;
-      collapsing.push_back(t);
-      is_collapsing_[t] = 1;
-      for(size_type end : {n0, n1, n2})
-        if(!is_image_end_[end]) { is_image_end_[end] = 1; image_ends.push_back(end); }
+    std::vector<size_type> collapsing;
+    if(!collapses_checked_) {
+      collapses_checked_ = true;
+      for(size_type t : touched_)
+        if(collapses(t)) collapsing.push_back(t);
+      // What the later passes look up: the collapsing triangles by the ends of their images, and
+      // the vertices merged into each representative.
+      for(size_type t : collapsing)
+        for(size_type v : tables_.triangle(t)) collapsing_by_end_.emplace_back(final_vertex(v), t);
+      std::sort(collapsing_by_end_.begin(), collapsing_by_end_.end());
+      collapsing_by_end_.erase(std::unique(collapsing_by_end_.begin(), collapsing_by_end_.end()),
+                               collapsing_by_end_.end());
+      if(!collapsing.empty())
+        for(size_type v : candidates_)
+          if(target_[v] != none) merged_into_.emplace_back(target_[v], v);
+      std::sort(merged_into_.begin(), merged_into_.end());
+    } else {
+      ++pass_id_;
+      std::vector<size_type> former_targets;
+      for(const auto& [v, former_target] : cancelled_since_collapses_check_) {
+        for(size_type t : tables_.triangles_around_vertex(v))
+          if(collapses(t) && mark_for_pass(t)) collapsing.push_back(t);
+        former_targets.push_back(former_target);
+      }
+      // Each representative once: a cluster may lose many members in one pass.
+      std::sort(former_targets.begin(), former_targets.end());
+      former_targets.erase(std::unique(former_targets.begin(), former_targets.end()), former_targets.end());
+      for(size_type r : former_targets) {
+        auto range = std::equal_range(collapsing_by_end_.begin(), collapsing_by_end_.end(), std::make_pair(r, size_type(0)),
+                                      [](const auto& x, const auto& y) { return x.first < y.first; });
+        for(auto it = range.first; it != range.second; ++it)
+          if(collapses(it->second) && mark_for_pass(it->second)) collapsing.push_back(it->second);
+      }
     }
+    cancelled_since_collapses_check_.clear();
     if(collapsing.empty()) return false;
+    std::vector<size_type> image_ends;
+    is_image_end_.resize(points_.size(), 0);
+    for(size_type t : collapsing)
+      for(size_type v : tables_.triangle(t)) {
+        const size_type end = final_vertex(v);
+        if(!is_image_end_[end]) { is_image_end_[end] = 1; image_ends.push_back(end); }
+      }
     // The vertices that end at an end of an image: the end itself and the vertices merged into it.
     std::vector<size_type> at_image_ends = image_ends;
-    for(size_type v : candidates_)
-      if(target_[v] != none && is_image_end_[target_[v]]) at_image_ends.push_back(v);
+    for(size_type end : image_ends) {
+      auto range = std::equal_range(merged_into_.begin(), merged_into_.end(), std::make_pair(end, size_type(0)),
+                                    [](const auto& x, const auto& y) { return x.first < y.first; });
+      for(auto it = range.first; it != range.second; ++it)
+        if(target_[it->second] == end) at_image_ends.push_back(it->second);
+    }
     // The edges and corners of the kept triangles at the ends of the images, as pairs of final vertices.
     std::vector<std::pair<size_type, size_type>> kept;
     for(size_type v : at_image_ends) {
       const size_type x = final_vertex(v);
       for(size_type t : tables_.triangles_around_vertex(v)) {
-        if(is_collapsing_[t]) continue;
+        if(collapses(t)) continue;
         for(size_type w : tables_.triangle(t)) {
           const size_type f = final_vertex(w);
           kept.emplace_back(std::min(x, f), std::max(x, f));
@@ -553,18 +650,8 @@ private:
       for(size_type v : tr)
         if(target_[v] != none) cancelled_.emplace_back(v, Refusal_reason::UNCOVERED_COLLAPSE);
     }
-    for(size_type t : collapsing) is_collapsing_[t] = 0;
     for(size_type end : image_ends) is_image_end_[end] = 0;
-    std::sort(cancelled_.begin(), cancelled_.end());
-    bool changed = false;
-    for(const auto& [v, why] : cancelled_) {
-      if(target_[v] == none) continue;
-      visitor_.on_refusal(v, target_[v], why);
-      ++report_.refused_uncovered_collapse;
-      target_[v] = none;
-      changed = true;
-    }
-    return changed;
+    return cancel_listed_moves();
   }
 
   // Applies the merges, in increasing index order. Few merges: local updates of the tables
@@ -674,7 +761,13 @@ private:
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
-  std::vector<char> is_collapsing_;                     // triangles whose corners merge (all 0 between passes)
+  bool moves_checked_ = false, collapses_checked_ = false; // the first pass of each kind is done
+  std::vector<size_type> cancelled_since_moves_check_;  // vertices cancelled since the last check of the moves
+  std::vector<std::pair<size_type, size_type>> cancelled_since_collapses_check_; // (vertex, its former target)
+  std::vector<std::pair<size_type, size_type>> collapsing_by_end_; // (end of the image, collapsing triangle)
+  std::vector<std::pair<size_type, size_type>> merged_into_;       // (representative, vertex merged into it)
+  std::vector<std::uint32_t> pass_mark_;                // triangles listed in the pass `pass_id_`
+  std::uint32_t pass_id_ = 0;
   std::vector<char> is_image_end_;                      // final vertices of their images (all 0 between passes)
   // Application.
   std::vector<size_type> collapsed_;                    // triangles removed, in increasing order
