@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -256,10 +257,10 @@ private:
     tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
     find_same_triangle_pairs();
     components_.reset(n);
-    Tolerance_grid<Kernel> grid(candidate_points_, eps_, kernel_);
-    dense_ = grid.usable() && grid.largest_cell() > dense_cell_size;
+    // The grid's cells are counted first and the grid built only for a dense cluster.
+    dense_ = largest_tolerance_cell(candidate_points_, eps_) > dense_cell_size;
     if(dense_)
-      grid.unite_components(components_);
+      Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
     else
       join_neighborhoods();
   }
@@ -334,27 +335,85 @@ private:
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
-    const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
-    lex_order_.resize(n);
-    std::iota(lex_order_.begin(), lex_order_.end(), 0u);
-    std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return less_xyz(candidate_points_[a], candidate_points_[b]);
-    });
+    sort_candidates_lexicographically();
     target_.assign(points_.size(), none);
     in_cluster_mark_.assign(tables_.number_of_triangles(), static_cast<std::uint32_t>(-1));
-    mate_of_.assign(points_.size(), not_candidate);
+    if(dense_) mate_of_.assign(points_.size(), not_candidate);
     assigned_.assign(n, false);
     component_size_.assign(n, 0);
     largest_cluster_.assign(n, 0);
-    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[components_.find(c)];
-    for(const std::uint32_t rep : lex_order_) {
+    std::vector<std::uint32_t> root(n);
+    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root[c] = components_.find(c)];
+    // The clusters of a component depend on that component only (its candidates, their
+    // triangles and the moves among them), so the components are taken in the order of their
+    // smallest index, which keeps the memory accesses of neighbouring candidates together, each
+    // in lexicographic order. The refusals told on the way are told in the lexicographic order of
+    // their representatives, as if the candidates were all taken in that order.
+    std::vector<std::uint32_t> visits(n), next_visit(n), rank(n);
+    std::uint32_t number_of_visits = 0;
+    for(std::uint32_t c = 0; c < n; ++c)
+      if(root[c] == c && component_size_[c] >= 2) { next_visit[c] = number_of_visits; number_of_visits += component_size_[c]; }
+    for(std::uint32_t position = 0; position < n; ++position) {
+      const std::uint32_t c = lex_order_[position];
+      rank[c] = position;
+      if(component_size_[root[c]] >= 2) visits[next_visit[root[c]]++] = c;
+    }
+    visits.resize(number_of_visits);
+    deferred_refusals_.clear();
+    for(const std::uint32_t rep : visits) {
       if(assigned_[rep]) continue;
       assigned_[rep] = true;
-      const std::uint32_t root = components_.find(rep);
-      if(component_size_[root] < 2) continue;
       gather_members(rep);
+      const std::size_t first_refusal = deferred_refusals_.size();
       const std::uint32_t cluster_size = join_members(rep);
-      largest_cluster_[root] = std::max(largest_cluster_[root], cluster_size);
+      for(std::size_t k = first_refusal; k < deferred_refusals_.size(); ++k) deferred_refusals_[k].rank = rank[rep];
+      largest_cluster_[root[rep]] = std::max(largest_cluster_[root[rep]], cluster_size);
+    }
+    std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
+                     [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
+    for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
+  }
+
+  // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
+  // `Less_xyz_3` compares x, then y, then z, as `<` does (-0 equal to 0): a stable radix sort by x
+  // (in index order), then each run of equal x sorted by (y, z, index), gives the same order.
+  void sort_candidates_lexicographically()
+  {
+    const std::size_t n = candidates_.size();
+    lex_order_.resize(n);
+    if constexpr(std::is_same<FT, double>::value) {
+      // The bits of a double, turned into an unsigned integer of the same order.
+      auto ordered_bits = [](double x) {
+        x += 0.0; // -0 becomes 0
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t(1) << 63);
+      };
+      struct Item { std::uint64_t key; std::uint32_t id; };
+      std::vector<Item> items(n), buffer;
+      for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_points_[c].x()), static_cast<std::uint32_t>(c)};
+      radix_sort_by_key(items, buffer);
+      for(std::size_t i = 0; i < n;) {
+        std::size_t j = i + 1;
+        while(j < n && items[j].key == items[i].key) ++j;
+        if(j - i > 1)
+          std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
+                    [&](const Item& a, const Item& b) {
+                      const Point& p = candidate_points_[a.id];
+                      const Point& q = candidate_points_[b.id];
+                      if(p.y() != q.y()) return p.y() < q.y();
+                      if(p.z() != q.z()) return p.z() < q.z();
+                      return a.id < b.id;
+                    });
+        i = j;
+      }
+      for(std::size_t i = 0; i < n; ++i) lex_order_[i] = items[i].id;
+    } else {
+      const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
+      std::iota(lex_order_.begin(), lex_order_.end(), 0u);
+      std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return less_xyz(candidate_points_[a], candidate_points_[b]);
+      });
     }
   }
 
@@ -378,17 +437,39 @@ private:
     const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
     const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
     const Point& center = candidate_points_[rep];
-    std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
-                                                          compare_distance);
-      if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-      return less_xyz(candidate_points_[a], candidate_points_[b]);
-    });
+    if constexpr(std::is_same<FT, double>::value) {
+      // The order of `compare_distances()`, with the squared distances in double computed once.
+      auto squared_distance = [&](const Point& q) {
+        return (q.x() - center.x()) * (q.x() - center.x()) + (q.y() - center.y()) * (q.y() - center.y()) +
+               (q.z() - center.z()) * (q.z() - center.z());
+      };
+      member_distances_.clear();
+      for(std::uint32_t m : members_) member_distances_.emplace_back(squared_distance(candidate_points_[m]), m);
+      std::sort(member_distances_.begin(), member_distances_.end(), [&](const auto& a, const auto& b) {
+        const double dq = a.first, dr = b.first;
+        if(dq > 1e-250 && dr > 1e-250) {
+          if(dq < dr * (1 - 1e-12)) return true;
+          if(dq > dr * (1 + 1e-12)) return false;
+        }
+        const CGAL::Comparison_result r = compare_distance(center, candidate_points_[a.second], candidate_points_[b.second]);
+        if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+        return less_xyz(candidate_points_[a.second], candidate_points_[b.second]);
+      });
+      for(std::size_t k = 0; k < members_.size(); ++k) members_[k] = member_distances_[k].second;
+    } else {
+      std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
+                                                            compare_distance);
+        if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+        return less_xyz(candidate_points_[a], candidate_points_[b]);
+      });
+    }
     members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
   }
 
   // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
-  // a triangle with a vertex already in the cluster; returns the size of the cluster.
+  // a triangle with a vertex already in the cluster (the refusals are told by `form_clusters()`);
+  // returns the size of the cluster.
   std::uint32_t join_members(std::uint32_t rep)
   {
     const size_type rep_v = candidates_[rep];
@@ -400,7 +481,7 @@ private:
       if(fixed_ != nullptr && (*fixed_)[mv]) {
         // mv received welds in an earlier call: it may be a representative, never move.
         ++report_.refused_holds_welds;
-        visitor_.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
+        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::HOLDS_WELDS});
         continue;
       }
       bool conflict = false;
@@ -408,7 +489,7 @@ private:
         if(in_cluster_mark_[t] == cluster_id_ && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
       if(conflict) {
         ++report_.refused_same_triangle;
-        visitor_.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
+        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::SAME_TRIANGLE});
         continue;
       }
       for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark_[t] = cluster_id_;
@@ -756,8 +837,16 @@ private:
   std::vector<bool> assigned_;
   std::vector<std::uint32_t> component_size_, largest_cluster_;
   std::vector<std::uint32_t> members_;
+  std::vector<std::pair<double, std::uint32_t>> member_distances_; // (squared distance in double, member)
   std::vector<std::size_t> found_;
   std::uint32_t cluster_id_ = 0;
+  struct Deferred_refusal
+  {
+    std::uint32_t rank;                                 // of the representative in `lex_order_`
+    size_type vertex, representative;
+    Refusal_reason reason;
+  };
+  std::vector<Deferred_refusal> deferred_refusals_;     // told at the end of `form_clusters()`
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
