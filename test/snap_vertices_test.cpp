@@ -913,6 +913,133 @@ TEST(SnapVertices, Issue19VisitorIsCopiedUnlessGivenByReference)
   EXPECT_EQ(t1, t2);
 }
 
+// Issue 13: soups on which each cancellation of the guard makes one more cancellation necessary,
+// so that the guard needs one pass per link of the chain. The indices of the vertices of link i
+// are given by the functions below, for the expected decisions.
+struct Guard_chain
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  double tolerance = 0;
+  std::vector<std::size_t> moving, representative; // link i: vertex moving[i] would go to representative[i]
+};
+
+// A chain of flips. Vertices a_i = (i, 0, 0), i = 0..n, and triangles (a_i, a_(i+1), r_i) with
+// r_i = (i + 2.5, 0.01, 0): thin triangles whose edge [a_i, a_(i+1)] may move up by 0.005 as a
+// whole, but not one end alone (the triangle would flip). Each a_i, i >= 1, has a copy
+// b_i = a_i + (-0.001, 0.005, 0) in a triangle of its own, lexicographically smaller: a_i would
+// move to b_i. a_0 has none, so the triangle (a_0, a_1, r_0) flips and cancels the move of a_1,
+// which makes (a_1, a_2, r_1) flip, and so on: n passes of the guard, each cancelling one move.
+Guard_chain flip_chain(std::size_t n)
+{
+  Guard_chain c;
+  c.tolerance = 0.006;
+  for(std::size_t i = 0; i <= n; ++i) c.points.push_back(Point(double(i), 0, 0));
+  for(std::size_t i = 0; i < n; ++i) {
+    c.points.push_back(Point(i + 2.5, 0.01, 0));
+    c.triangles.push_back({i, i + 1, n + 1 + i});
+  }
+  for(std::size_t i = 1; i <= n; ++i) {
+    const std::size_t b = c.points.size();
+    const double x = i - 0.001;
+    c.points.push_back(Point(x, 0.005, 0));
+    c.points.push_back(Point(x + 0.3, 0.005, 1));
+    c.points.push_back(Point(x, 0.305, 1));
+    c.triangles.push_back({b, b + 1, b + 2});
+    c.moving.push_back(i);
+    c.representative.push_back(b);
+  }
+  return c;
+}
+
+// A chain of uncovered collapses (Small_features::COLLAPSE). Vertices b_i = (i, 0, 0), i = 0..n,
+// and a_i = b_i + (0.01, 0.01, 0), i = 1..n, which would merge into b_i; a_0 = (0, 0.5, 0) far
+// from everything. The sliver t_i = (a_i, b_i, b_(i-1)) collapses onto the edge [b_(i-1), b_i],
+// which only K_i = (a_(i-1), b_i, z_i) covers, through the move of a_(i-1) to b_(i-1) (z_i far
+// away). a_0 does not move, so t_1 is uncovered and the move of a_1 is cancelled, which uncovers
+// t_2, and so on: n passes, each cancelling one move.
+Guard_chain collapse_chain(std::size_t n)
+{
+  Guard_chain c;
+  c.tolerance = 0.05;
+  for(std::size_t i = 0; i <= n; ++i) c.points.push_back(Point(double(i), 0, 0));       // b_i: i
+  c.points.push_back(Point(0, 0.5, 0));                                                 // a_0: n + 1
+  for(std::size_t i = 1; i <= n; ++i) c.points.push_back(Point(i + 0.01, 0.01, 0));     // a_i: n + 1 + i
+  for(std::size_t i = 1; i <= n; ++i) c.points.push_back(Point(i - 0.5, 5, 0));         // z_i: 2n + 1 + i
+  for(std::size_t i = 1; i <= n; ++i) {
+    c.triangles.push_back({n + 1 + i, i, i - 1});
+    c.triangles.push_back({n + i, i, 2 * n + 1 + i});
+    c.moving.push_back(n + 1 + i);
+    c.representative.push_back(i);
+  }
+  return c;
+}
+
+struct Decision_recorder
+{
+  std::vector<std::pair<std::size_t, std::size_t>> merges;
+  std::vector<std::tuple<std::size_t, std::size_t, ST::Refusal_reason>> refusals;
+  void on_merge(std::size_t v, std::size_t r) { merges.emplace_back(v, r); }
+  void on_refusal(std::size_t v, std::size_t r, ST::Refusal_reason why) { refusals.emplace_back(v, r, why); }
+};
+
+// Welds `chain` under `policy`; every link is refused for `reason`, in the order of the chain (one
+// pass each), nothing is merged and the triangles are unchanged. Returns the processor time.
+double expect_chain_refused(const Guard_chain& chain, ST::Small_features policy, ST::Refusal_reason reason)
+{
+  std::vector<Triangle> triangles = chain.triangles;
+  Decision_recorder recorder;
+  const std::clock_t start = std::clock();
+  const ST::Snap_report r = ST::snap_vertices(
+    chain.points, triangles,
+    ST::parameters::small_features(
+      policy, CGAL::parameters::snapping_tolerance(chain.tolerance).visitor(std::ref(recorder))));
+  const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
+  const std::size_t n = chain.moving.size();
+  EXPECT_EQ(r.merged_vertices, 0u);
+  EXPECT_EQ(r.clusters, 0u);
+  EXPECT_EQ(r.collapsed_triangles, 0u);
+  EXPECT_EQ(r.refused(), n);
+  EXPECT_EQ(r.refused_flip, reason == ST::Refusal_reason::FLIP ? n : 0u);
+  EXPECT_EQ(r.refused_uncovered_collapse, reason == ST::Refusal_reason::UNCOVERED_COLLAPSE ? n : 0u);
+  EXPECT_EQ(r.refused_same_triangle, reason == ST::Refusal_reason::SAME_TRIANGLE ? n : 0u);
+  EXPECT_TRUE(recorder.merges.empty());
+  EXPECT_EQ(triangles, chain.triangles);
+  if(reason != ST::Refusal_reason::SAME_TRIANGLE) {
+    EXPECT_TRUE(r.ambiguous_sites.empty()); // each component went to one representative
+    std::vector<std::tuple<std::size_t, std::size_t, ST::Refusal_reason>> expected;
+    for(std::size_t i = 0; i < n; ++i) expected.emplace_back(chain.moving[i], chain.representative[i], reason);
+    EXPECT_EQ(recorder.refusals, expected);
+  }
+  return seconds;
+}
+
+TEST(SnapVertices, Issue13ChainOfFlipsIsRefusedLinkByLink)
+{
+  const Guard_chain small = flip_chain(5);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE})
+    expect_chain_refused(small, policy, ST::Refusal_reason::FLIP);
+  // One pass per link: a pass after the first checks the triangles the previous one changed,
+  // not every moved triangle, so the chain costs time linear in its length.
+  const Guard_chain chain = flip_chain(32000);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    const double seconds = expect_chain_refused(chain, policy, ST::Refusal_reason::FLIP);
+    if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 5.0); }
+  }
+}
+
+TEST(SnapVertices, Issue13ChainOfUncoveredCollapsesIsRefusedLinkByLink)
+{
+  const Guard_chain small = collapse_chain(5);
+  expect_chain_refused(small, ST::Small_features::COLLAPSE, ST::Refusal_reason::UNCOVERED_COLLAPSE);
+  // Under REFUSE each a_i shares the sliver with b_i: refused, and no guard.
+  expect_chain_refused(small, ST::Small_features::REFUSE, ST::Refusal_reason::SAME_TRIANGLE);
+  // Linear in the length of the chain, as above.
+  const Guard_chain chain = collapse_chain(32000);
+  const double seconds = expect_chain_refused(chain, ST::Small_features::COLLAPSE, ST::Refusal_reason::UNCOVERED_COLLAPSE);
+  if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 5.0); }
+}
+
 } // namespace
 
 } // namespace snap_vertices_test

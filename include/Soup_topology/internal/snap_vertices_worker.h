@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <iterator>
 #include <memory>
@@ -256,10 +257,10 @@ private:
     tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
     find_same_triangle_pairs();
     components_.reset(n);
-    Tolerance_grid<Kernel> grid(candidate_points_, eps_, kernel_);
-    dense_ = grid.usable() && grid.largest_cell() > dense_cell_size;
+    // The grid's cells are counted first and the grid built only for a dense cluster.
+    dense_ = largest_tolerance_cell(candidate_points_, eps_) > dense_cell_size;
     if(dense_)
-      grid.unite_components(components_);
+      Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
     else
       join_neighborhoods();
   }
@@ -334,27 +335,85 @@ private:
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
-    const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
-    lex_order_.resize(n);
-    std::iota(lex_order_.begin(), lex_order_.end(), 0u);
-    std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return less_xyz(candidate_points_[a], candidate_points_[b]);
-    });
+    sort_candidates_lexicographically();
     target_.assign(points_.size(), none);
     in_cluster_mark_.assign(tables_.number_of_triangles(), static_cast<std::uint32_t>(-1));
-    mate_of_.assign(points_.size(), not_candidate);
+    if(dense_) mate_of_.assign(points_.size(), not_candidate);
     assigned_.assign(n, false);
     component_size_.assign(n, 0);
     largest_cluster_.assign(n, 0);
-    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[components_.find(c)];
-    for(const std::uint32_t rep : lex_order_) {
+    std::vector<std::uint32_t> root(n);
+    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root[c] = components_.find(c)];
+    // The clusters of a component depend on that component only (its candidates, their
+    // triangles and the moves among them), so the components are taken in the order of their
+    // smallest index, which keeps the memory accesses of neighbouring candidates together, each
+    // in lexicographic order. The refusals told on the way are told in the lexicographic order of
+    // their representatives, as if the candidates were all taken in that order.
+    std::vector<std::uint32_t> visits(n), next_visit(n), rank(n);
+    std::uint32_t number_of_visits = 0;
+    for(std::uint32_t c = 0; c < n; ++c)
+      if(root[c] == c && component_size_[c] >= 2) { next_visit[c] = number_of_visits; number_of_visits += component_size_[c]; }
+    for(std::uint32_t position = 0; position < n; ++position) {
+      const std::uint32_t c = lex_order_[position];
+      rank[c] = position;
+      if(component_size_[root[c]] >= 2) visits[next_visit[root[c]]++] = c;
+    }
+    visits.resize(number_of_visits);
+    deferred_refusals_.clear();
+    for(const std::uint32_t rep : visits) {
       if(assigned_[rep]) continue;
       assigned_[rep] = true;
-      const std::uint32_t root = components_.find(rep);
-      if(component_size_[root] < 2) continue;
       gather_members(rep);
+      const std::size_t first_refusal = deferred_refusals_.size();
       const std::uint32_t cluster_size = join_members(rep);
-      largest_cluster_[root] = std::max(largest_cluster_[root], cluster_size);
+      for(std::size_t k = first_refusal; k < deferred_refusals_.size(); ++k) deferred_refusals_[k].rank = rank[rep];
+      largest_cluster_[root[rep]] = std::max(largest_cluster_[root[rep]], cluster_size);
+    }
+    std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
+                     [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
+    for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
+  }
+
+  // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
+  // `Less_xyz_3` compares x, then y, then z, as `<` does (-0 equal to 0): a stable radix sort by x
+  // (in index order), then each run of equal x sorted by (y, z, index), gives the same order.
+  void sort_candidates_lexicographically()
+  {
+    const std::size_t n = candidates_.size();
+    lex_order_.resize(n);
+    if constexpr(std::is_same<FT, double>::value) {
+      // The bits of a double, turned into an unsigned integer of the same order.
+      auto ordered_bits = [](double x) {
+        x += 0.0; // -0 becomes 0
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t(1) << 63);
+      };
+      struct Item { std::uint64_t key; std::uint32_t id; };
+      std::vector<Item> items(n), buffer;
+      for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_points_[c].x()), static_cast<std::uint32_t>(c)};
+      radix_sort_by_key(items, buffer);
+      for(std::size_t i = 0; i < n;) {
+        std::size_t j = i + 1;
+        while(j < n && items[j].key == items[i].key) ++j;
+        if(j - i > 1)
+          std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
+                    [&](const Item& a, const Item& b) {
+                      const Point& p = candidate_points_[a.id];
+                      const Point& q = candidate_points_[b.id];
+                      if(p.y() != q.y()) return p.y() < q.y();
+                      if(p.z() != q.z()) return p.z() < q.z();
+                      return a.id < b.id;
+                    });
+        i = j;
+      }
+      for(std::size_t i = 0; i < n; ++i) lex_order_[i] = items[i].id;
+    } else {
+      const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
+      std::iota(lex_order_.begin(), lex_order_.end(), 0u);
+      std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return less_xyz(candidate_points_[a], candidate_points_[b]);
+      });
     }
   }
 
@@ -378,17 +437,39 @@ private:
     const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
     const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
     const Point& center = candidate_points_[rep];
-    std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
-      const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
-                                                          compare_distance);
-      if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-      return less_xyz(candidate_points_[a], candidate_points_[b]);
-    });
+    if constexpr(std::is_same<FT, double>::value) {
+      // The order of `compare_distances()`, with the squared distances in double computed once.
+      auto squared_distance = [&](const Point& q) {
+        return (q.x() - center.x()) * (q.x() - center.x()) + (q.y() - center.y()) * (q.y() - center.y()) +
+               (q.z() - center.z()) * (q.z() - center.z());
+      };
+      member_distances_.clear();
+      for(std::uint32_t m : members_) member_distances_.emplace_back(squared_distance(candidate_points_[m]), m);
+      std::sort(member_distances_.begin(), member_distances_.end(), [&](const auto& a, const auto& b) {
+        const double dq = a.first, dr = b.first;
+        if(dq > 1e-250 && dr > 1e-250) {
+          if(dq < dr * (1 - 1e-12)) return true;
+          if(dq > dr * (1 + 1e-12)) return false;
+        }
+        const CGAL::Comparison_result r = compare_distance(center, candidate_points_[a.second], candidate_points_[b.second]);
+        if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+        return less_xyz(candidate_points_[a.second], candidate_points_[b.second]);
+      });
+      for(std::size_t k = 0; k < members_.size(); ++k) members_[k] = member_distances_[k].second;
+    } else {
+      std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
+                                                            compare_distance);
+        if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+        return less_xyz(candidate_points_[a], candidate_points_[b]);
+      });
+    }
     members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
   }
 
   // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
-  // a triangle with a vertex already in the cluster; returns the size of the cluster.
+  // a triangle with a vertex already in the cluster (the refusals are told by `form_clusters()`);
+  // returns the size of the cluster.
   std::uint32_t join_members(std::uint32_t rep)
   {
     const size_type rep_v = candidates_[rep];
@@ -400,7 +481,7 @@ private:
       if(fixed_ != nullptr && (*fixed_)[mv]) {
         // mv received welds in an earlier call: it may be a representative, never move.
         ++report_.refused_holds_welds;
-        visitor_.on_refusal(mv, rep_v, Refusal_reason::HOLDS_WELDS);
+        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::HOLDS_WELDS});
         continue;
       }
       bool conflict = false;
@@ -408,7 +489,7 @@ private:
         if(in_cluster_mark_[t] == cluster_id_ && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
       if(conflict) {
         ++report_.refused_same_triangle;
-        visitor_.on_refusal(mv, rep_v, Refusal_reason::SAME_TRIANGLE);
+        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::SAME_TRIANGLE});
         continue;
       }
       for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark_[t] = cluster_id_;
@@ -456,9 +537,36 @@ private:
   }
 
   // Geometric validity: no triangle may become degenerate or flip; refuse until stable. Each
-  // pass checks every touched triangle against the moves of the previous pass and cancels the
+  // pass checks the touched triangles against the moves of the previous pass and cancels the
   // moves of all failing triangles at once, so the result does not depend on the order in which
   // the triangles are stored.
+  //
+  // Only the first pass of each kind checks every touched triangle; a later pass checks what the
+  // cancellations since the previous pass of its kind can change, which gives the same
+  // decisions:
+  // - the verdict of `cancel_failing_moves()` on a triangle depends on the final vertices of its
+  //   three corners only, and a cancellation changes the final vertex of the cancelled vertex
+  //   only (a representative never moves, so no other vertex ends at a moving one). A triangle
+  //   with no cancelled corner since its last check has the verdict of that check: it passed
+  //   (a failing triangle has all its moving corners cancelled), and passes again. So the
+  //   triangles around the vertices cancelled since the previous pass are the only ones that
+  //   can fail, and a pass that checks them finds the same failing triangles as a pass over all;
+  // - under `cancel_uncovered_collapses()` a collapsing triangle with image (p, q) is covered
+  //   exactly when some non-collapsing triangle has final vertices p and q (p alone for a point):
+  //   such a triangle has a corner ending at p and one ending at q, which are ends of images or
+  //   vertices merged into them, and every covering pair is made of such corners. Cancellations
+  //   never make a triangle collapse (the cancelled vertex ends at itself, which no other vertex
+  //   does). A collapsing triangle t without a cancelled corner keeps its image (p, q). A
+  //   triangle K that covered it and no longer does lost a corner ending at p or at q (if both
+  //   stay, K keeps p and q, and its cancelled corners end at themselves, distinct from them):
+  //   p or q was the target of a cancelled vertex. A triangle that was uncovered had its moving
+  //   corners cancelled. So the collapsing triangles around the cancelled vertices and those
+  //   with an end that was the target of a cancelled vertex are the only ones whose verdict can
+  //   change.
+  // The cancellations of a pass are then the same, in the same vertex order, with the same
+  // reasons, the same visitor calls and the same counts. Each vertex is cancelled once, so the
+  // passes after the first check the triangles around the cancelled vertices (and, for the
+  // collapses, around the clusters that lost a member) rather than every touched triangle.
   void guard_against_degenerate_and_flipped_triangles()
   {
     std::vector<char> is_touched(tables_.number_of_triangles(), 0);
@@ -472,37 +580,73 @@ private:
     } while(collapse_ && cancel_uncovered_collapses());
   }
 
-  // One pass of the guard; `true` if some move was cancelled.
-  bool cancel_failing_moves()
+  // `true` if two corners of the triangle `t` end at one vertex (only under COLLAPSE: clusters
+  // hold no two vertices of one triangle otherwise).
+  bool collapses(size_type t) const
   {
-    cancelled_.clear();
-    for(size_type t : touched_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
-      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
-      if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) continue;
-      // Two corners merged (only under COLLAPSE: clusters hold no two vertices of one triangle
-      // otherwise): the triangle is removed, nothing of it to keep.
-      if(n0 == n1 || n1 == n2 || n2 == n0) continue;
-      Refusal_reason why = Refusal_reason::FLIP;
-      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) continue;
-      if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
-        continue;
-      for(size_type v : tr)
-        if(target_[v] != none) cancelled_.emplace_back(v, why);
-    }
-    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
-    std::sort(cancelled_.begin(), cancelled_.end(), [](const auto& x, const auto& y) {
-      return x.first < y.first || (x.first == y.first && x.second < y.second);
-    });
+    const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+    const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+    return n0 == n1 || n1 == n2 || n2 == n0;
+  }
+
+  // Marks `t` as listed in the current pass; `false` if it was already.
+  bool mark_for_pass(size_type t)
+  {
+    if(pass_mark_.empty()) pass_mark_.assign(tables_.number_of_triangles(), 0);
+    if(pass_mark_[t] == pass_id_) return false;
+    pass_mark_[t] = pass_id_;
+    return true;
+  }
+
+  // Cancels the moves listed in `cancelled_` (sorted: by vertex, then reason), each vertex once
+  // with its first reason; `true` if some move was cancelled.
+  bool cancel_listed_moves()
+  {
+    std::sort(cancelled_.begin(), cancelled_.end());
     bool changed = false;
     for(const auto& [v, why] : cancelled_) {
       if(target_[v] == none) continue;
       visitor_.on_refusal(v, target_[v], why);
-      if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate; else ++report_.refused_flip;
+      if(why == Refusal_reason::DEGENERATE) ++report_.refused_degenerate;
+      else if(why == Refusal_reason::UNCOVERED_COLLAPSE) ++report_.refused_uncovered_collapse;
+      else ++report_.refused_flip;
+      cancelled_since_moves_check_.push_back(v);
+      cancelled_since_collapses_check_.emplace_back(v, target_[v]);
       target_[v] = none;
       changed = true;
     }
     return changed;
+  }
+
+  // One pass of the guard; `true` if some move was cancelled.
+  bool cancel_failing_moves()
+  {
+    cancelled_.clear();
+    auto check = [&](size_type t) {
+      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
+      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
+      if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) return;
+      // Two corners merged: the triangle is removed, nothing of it to keep.
+      if(n0 == n1 || n1 == n2 || n2 == n0) return;
+      Refusal_reason why = Refusal_reason::FLIP;
+      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) return;
+      if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
+        return;
+      for(size_type v : tr)
+        if(target_[v] != none) cancelled_.emplace_back(v, why);
+    };
+    if(!moves_checked_) {
+      moves_checked_ = true;
+      for(size_type t : touched_) check(t);
+    } else {
+      ++pass_id_;
+      for(size_type v : cancelled_since_moves_check_)
+        for(size_type t : tables_.triangles_around_vertex(v))
+          if(mark_for_pass(t)) check(t);
+    }
+    cancelled_since_moves_check_.clear();
+    // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
+    return cancel_listed_moves();
   }
 
   // Under `Small_features::COLLAPSE`: a triangle two of whose corners merge collapses onto an edge
@@ -513,29 +657,63 @@ private:
   // depend on the order of the triangles); `true` if some move was cancelled.
   bool cancel_uncovered_collapses()
   {
-    std::vector<size_type> collapsing, image_ends;
-    is_collapsing_.resize(tables_.number_of_triangles(), 0);
-    is_image_end_.resize(points_.size(), 0);
-    for(size_type t : touched_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(t);
-      const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
-      if(n0 != n1 && n1 != n2 && n2 != n0) continue;
-      collapsing.push_back(t);
-      is_collapsing_[t] = 1;
-      for(size_type end : {n0, n1, n2})
-        if(!is_image_end_[end]) { is_image_end_[end] = 1; image_ends.push_back(end); }
+    std::vector<size_type> collapsing;
+    if(!collapses_checked_) {
+      collapses_checked_ = true;
+      for(size_type t : touched_)
+        if(collapses(t)) collapsing.push_back(t);
+      // What the later passes look up: the collapsing triangles by the ends of their images, and
+      // the vertices merged into each representative.
+      for(size_type t : collapsing)
+        for(size_type v : tables_.triangle(t)) collapsing_by_end_.emplace_back(final_vertex(v), t);
+      std::sort(collapsing_by_end_.begin(), collapsing_by_end_.end());
+      collapsing_by_end_.erase(std::unique(collapsing_by_end_.begin(), collapsing_by_end_.end()),
+                               collapsing_by_end_.end());
+      if(!collapsing.empty())
+        for(size_type v : candidates_)
+          if(target_[v] != none) merged_into_.emplace_back(target_[v], v);
+      std::sort(merged_into_.begin(), merged_into_.end());
+    } else {
+      ++pass_id_;
+      std::vector<size_type> former_targets;
+      for(const auto& [v, former_target] : cancelled_since_collapses_check_) {
+        for(size_type t : tables_.triangles_around_vertex(v))
+          if(collapses(t) && mark_for_pass(t)) collapsing.push_back(t);
+        former_targets.push_back(former_target);
+      }
+      // Each representative once: a cluster may lose many members in one pass.
+      std::sort(former_targets.begin(), former_targets.end());
+      former_targets.erase(std::unique(former_targets.begin(), former_targets.end()), former_targets.end());
+      for(size_type r : former_targets) {
+        auto range = std::equal_range(collapsing_by_end_.begin(), collapsing_by_end_.end(), std::make_pair(r, size_type(0)),
+                                      [](const auto& x, const auto& y) { return x.first < y.first; });
+        for(auto it = range.first; it != range.second; ++it)
+          if(collapses(it->second) && mark_for_pass(it->second)) collapsing.push_back(it->second);
+      }
     }
+    cancelled_since_collapses_check_.clear();
     if(collapsing.empty()) return false;
+    std::vector<size_type> image_ends;
+    is_image_end_.resize(points_.size(), 0);
+    for(size_type t : collapsing)
+      for(size_type v : tables_.triangle(t)) {
+        const size_type end = final_vertex(v);
+        if(!is_image_end_[end]) { is_image_end_[end] = 1; image_ends.push_back(end); }
+      }
     // The vertices that end at an end of an image: the end itself and the vertices merged into it.
     std::vector<size_type> at_image_ends = image_ends;
-    for(size_type v : candidates_)
-      if(target_[v] != none && is_image_end_[target_[v]]) at_image_ends.push_back(v);
+    for(size_type end : image_ends) {
+      auto range = std::equal_range(merged_into_.begin(), merged_into_.end(), std::make_pair(end, size_type(0)),
+                                    [](const auto& x, const auto& y) { return x.first < y.first; });
+      for(auto it = range.first; it != range.second; ++it)
+        if(target_[it->second] == end) at_image_ends.push_back(it->second);
+    }
     // The edges and corners of the kept triangles at the ends of the images, as pairs of final vertices.
     std::vector<std::pair<size_type, size_type>> kept;
     for(size_type v : at_image_ends) {
       const size_type x = final_vertex(v);
       for(size_type t : tables_.triangles_around_vertex(v)) {
-        if(is_collapsing_[t]) continue;
+        if(collapses(t)) continue;
         for(size_type w : tables_.triangle(t)) {
           const size_type f = final_vertex(w);
           kept.emplace_back(std::min(x, f), std::max(x, f));
@@ -553,18 +731,8 @@ private:
       for(size_type v : tr)
         if(target_[v] != none) cancelled_.emplace_back(v, Refusal_reason::UNCOVERED_COLLAPSE);
     }
-    for(size_type t : collapsing) is_collapsing_[t] = 0;
     for(size_type end : image_ends) is_image_end_[end] = 0;
-    std::sort(cancelled_.begin(), cancelled_.end());
-    bool changed = false;
-    for(const auto& [v, why] : cancelled_) {
-      if(target_[v] == none) continue;
-      visitor_.on_refusal(v, target_[v], why);
-      ++report_.refused_uncovered_collapse;
-      target_[v] = none;
-      changed = true;
-    }
-    return changed;
+    return cancel_listed_moves();
   }
 
   // Applies the merges, in increasing index order. Few merges: local updates of the tables
@@ -669,12 +837,26 @@ private:
   std::vector<bool> assigned_;
   std::vector<std::uint32_t> component_size_, largest_cluster_;
   std::vector<std::uint32_t> members_;
+  std::vector<std::pair<double, std::uint32_t>> member_distances_; // (squared distance in double, member)
   std::vector<std::size_t> found_;
   std::uint32_t cluster_id_ = 0;
+  struct Deferred_refusal
+  {
+    std::uint32_t rank;                                 // of the representative in `lex_order_`
+    size_type vertex, representative;
+    Refusal_reason reason;
+  };
+  std::vector<Deferred_refusal> deferred_refusals_;     // told at the end of `form_clusters()`
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
-  std::vector<char> is_collapsing_;                     // triangles whose corners merge (all 0 between passes)
+  bool moves_checked_ = false, collapses_checked_ = false; // the first pass of each kind is done
+  std::vector<size_type> cancelled_since_moves_check_;  // vertices cancelled since the last check of the moves
+  std::vector<std::pair<size_type, size_type>> cancelled_since_collapses_check_; // (vertex, its former target)
+  std::vector<std::pair<size_type, size_type>> collapsing_by_end_; // (end of the image, collapsing triangle)
+  std::vector<std::pair<size_type, size_type>> merged_into_;       // (representative, vertex merged into it)
+  std::vector<std::uint32_t> pass_mark_;                // triangles listed in the pass `pass_id_`
+  std::uint32_t pass_id_ = 0;
   std::vector<char> is_image_end_;                      // final vertices of their images (all 0 between passes)
   // Application.
   std::vector<size_type> collapsed_;                    // triangles removed, in increasing order

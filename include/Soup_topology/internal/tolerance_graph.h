@@ -59,6 +59,124 @@ private:
   std::vector<std::uint32_t> parent_;
 };
 
+/// sorts `items` by their member `key` (an unsigned 64-bit integer), stably, with a least
+/// significant digit radix sort of 16-bit digits over the `bits` low bits of the keys (the
+/// others are zero); a digit that all keys share is skipped. `buffer` is scratch space.
+template <class Item>
+void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+{
+  const std::size_t n = items.size();
+  if(n < 2) return;
+  buffer.resize(n);
+  std::vector<std::size_t> count(std::size_t(1) << 16);
+  for(unsigned shift = 0; shift < bits; shift += 16) {
+    std::fill(count.begin(), count.end(), 0);
+    for(const Item& item : items) ++count[(item.key >> shift) & 0xffff];
+    if(count[(items[0].key >> shift) & 0xffff] == n) continue; // one digit for all: already in order
+    std::size_t sum = 0;
+    for(std::size_t& c : count) { const std::size_t here = c; c = sum; sum += here; }
+    for(const Item& item : items) buffer[count[(item.key >> shift) & 0xffff]++] = item;
+    items.swap(buffer);
+  }
+}
+
+/// the placement of the cells of a `Tolerance_grid`: the cell of a point of approximate
+/// coordinates c is floor((c - origin) / side) on each axis.
+struct Tolerance_grid_frame
+{
+  bool usable = false;          ///< `false` when the tolerance is zero or too small for integer cells
+  double side = 0, slack = 0;
+  std::array<double, 3> origin{{0, 0, 0}};
+  std::array<std::int64_t, 3> largest_key{{0, 0, 0}}; ///< the largest cell index on each axis
+
+  /// the frame for the points of approximate coordinates `coordinates(i)`, i < n, and the tolerance `e`.
+  template <class Coordinates>
+  Tolerance_grid_frame(std::size_t n, const Coordinates& coordinates, double e)
+  {
+    if(n == 0) return;
+    if(!(e > 0) || !std::isfinite(e)) return;
+    std::array<double, 3> lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::infinity()}};
+    std::array<double, 3> hi{{-lo[0], -lo[1], -lo[2]}};
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::array<double, 3> c = coordinates(i);
+      for(std::size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], c[k]);
+        hi[k] = std::max(hi[k], c[k]);
+      }
+    }
+    double magnitude = 0, extent = 0;
+    for(std::size_t k = 0; k < 3; ++k) {
+      magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
+      extent = std::max(extent, hi[k] - lo[k]);
+    }
+    side = e / std::sqrt(3.0) * (1 - 1e-6);
+    // Integer cells far below the coordinates' resolution say nothing: leave it to the caller.
+    if(!(side > 1e6 * std::numeric_limits<double>::epsilon() * magnitude) || !(extent / side < 1e12)) return;
+    // Rounding of the approximate coordinates and of their differences, for the box filter.
+    slack = 1e-6 * e + 16 * std::numeric_limits<double>::epsilon() * magnitude;
+    origin = lo;
+    largest_key = key(hi);
+    usable = true;
+  }
+
+  /// the cell of the point of approximate coordinates `c`.
+  std::array<std::int64_t, 3> key(const std::array<double, 3>& c) const
+  {
+    std::array<std::int64_t, 3> k;
+    for(std::size_t a = 0; a < 3; ++a) k[a] = static_cast<std::int64_t>(std::floor((c[a] - origin[a]) / side));
+    return k;
+  }
+};
+
+/// the approximate coordinates of a point.
+template <class Point>
+std::array<double, 3> approximate_coordinates(const Point& p)
+{
+  return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+}
+
+/// the number of points of the most populated cell of the `Tolerance_grid` of `points` for the
+/// tolerance `eps` (0 when that grid is not usable): its `largest_cell()`, found from the cell
+/// indices alone, without the cells.
+template <class Point, class FT>
+std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& eps)
+{
+  const std::size_t n = points.size();
+  const Tolerance_grid_frame frame(n, [&](std::size_t i) { return approximate_coordinates(points[i]); },
+                                   CGAL::to_double(eps));
+  if(!frame.usable) return 0;
+  std::size_t largest = 1;
+  constexpr std::int64_t packed_limit = std::int64_t(1) << 21;
+  if(frame.largest_key[0] < packed_limit && frame.largest_key[1] < packed_limit && frame.largest_key[2] < packed_limit) {
+    // Three indices of 21 bits in one integer, sorted by radix.
+    struct Item { std::uint64_t key; };
+    std::vector<Item> keys(n), buffer;
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::array<std::int64_t, 3> k = frame.key(approximate_coordinates(points[i]));
+      keys[i].key = (std::uint64_t(k[0]) << 42) | (std::uint64_t(k[1]) << 21) | std::uint64_t(k[2]);
+    }
+    radix_sort_by_key(keys, buffer, 63);
+    for(std::size_t i = 0; i < n;) {
+      std::size_t j = i + 1;
+      while(j < n && keys[j].key == keys[i].key) ++j;
+      largest = std::max(largest, j - i);
+      i = j;
+    }
+    return largest;
+  }
+  std::vector<std::array<std::int64_t, 3>> keys(n);
+  for(std::size_t i = 0; i < n; ++i) keys[i] = frame.key(approximate_coordinates(points[i]));
+  std::sort(keys.begin(), keys.end());
+  for(std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while(j < n && keys[j] == keys[i]) ++j;
+    largest = std::max(largest, j - i);
+    i = j;
+  }
+  return largest;
+}
+
 /// A grid over points whose cells have a diagonal just below the tolerance `eps`, so that every
 /// point of a cell is within `eps` of the cell's first point (checked exactly all the same; a
 /// point that fails, through rounding of the cell index, is handled pair by pair). The connected
@@ -90,35 +208,16 @@ public:
   {
     const std::size_t n = points.size();
     if(n == 0) return;
-    const double e = CGAL::to_double(eps);
-    if(!(e > 0) || !std::isfinite(e)) return;
     approx_.resize(n);
-    std::array<double, 3> lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                              std::numeric_limits<double>::infinity()}};
-    std::array<double, 3> hi{{-lo[0], -lo[1], -lo[2]}};
-    for(std::size_t i = 0; i < n; ++i) {
-      approx_[i] = {{CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y()), CGAL::to_double(points[i].z())}};
-      for(std::size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], approx_[i][k]);
-        hi[k] = std::max(hi[k], approx_[i][k]);
-      }
-    }
-    double magnitude = 0, extent = 0;
-    for(std::size_t k = 0; k < 3; ++k) {
-      magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
-      extent = std::max(extent, hi[k] - lo[k]);
-    }
-    side_ = e / std::sqrt(3.0) * (1 - 1e-6);
-    // Integer cells far below the coordinates' resolution say nothing: leave it to the caller.
-    if(!(side_ > 1e6 * std::numeric_limits<double>::epsilon() * magnitude) || !(extent / side_ < 1e12)) return;
-    // Rounding of the approximate coordinates and of their differences, for the box filter.
-    slack_ = 1e-6 * e + 16 * std::numeric_limits<double>::epsilon() * magnitude;
-    origin_ = lo;
+    for(std::size_t i = 0; i < n; ++i) approx_[i] = approximate_coordinates(points[i]);
+    const Tolerance_grid_frame frame(n, [&](std::size_t i) { return approx_[i]; }, CGAL::to_double(eps));
+    if(!frame.usable) return;
+    side_ = frame.side;
+    slack_ = frame.slack;
+    origin_ = frame.origin;
     std::vector<std::pair<Key, std::uint32_t>> keyed(n);
     for(std::size_t i = 0; i < n; ++i) {
-      Key key;
-      for(std::size_t k = 0; k < 3; ++k) key[k] = static_cast<std::int64_t>(std::floor((approx_[i][k] - origin_[k]) / side_));
-      keyed[i] = {key, static_cast<std::uint32_t>(i)};
+      keyed[i] = {frame.key(approx_[i]), static_cast<std::uint32_t>(i)};
     }
     std::sort(keyed.begin(), keyed.end());
     ids_.resize(n);
