@@ -142,9 +142,10 @@ private:
     border_points_.reserve(border_vertices_.size());
     for(size_type v : border_vertices_) border_points_.push_back(point(v));
     tree_.emplace(border_points_, CGAL::Identity_property_map<Point>(), Tree_traits(kernel_));
-    grid_.emplace(border_points_, eps_, kernel_);
-    dense_ = grid_->usable() && grid_->largest_cell() > dense_cell_size;
+    // The cells are counted first; the grid itself is built only for a dense cluster.
+    dense_ = largest_tolerance_cell(border_points_, eps_) > dense_cell_size;
     if(dense_) {
+      grid_.emplace(border_points_, eps_, kernel_);
       border_index_.assign(points_.size(), not_border);
       for(std::size_t f = 0; f < border_vertices_.size(); ++f)
         border_index_[border_vertices_[f]] = static_cast<std::uint32_t>(f);
