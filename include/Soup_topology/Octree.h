@@ -733,10 +733,9 @@ private:
         return f;
 #if defined(__GNUC__) || defined(__clang__)
       // where the blocks of the next levels are when one child only is split (depth-first layout)
-      __builtin_prefetch(nodes_.data() + nd.first_child + 8);
-      __builtin_prefetch(nodes_.data() + nd.first_child + 12);
-      __builtin_prefetch(nodes_.data() + nd.first_child + 16);
-      __builtin_prefetch(nodes_.data() + nd.first_child + 20);
+      if(std::size_t(nd.first_child) + 24 <= nodes_.size())
+        for(std::size_t ahead = 8; ahead < 24; ahead += 4)
+          __builtin_prefetch(nodes_.data() + nd.first_child + ahead);
 #endif
       const unsigned shift = depth_ - 1 - nd.level;
       const Address c{{ilo[0] >> shift, ilo[1] >> shift, ilo[2] >> shift}};
@@ -803,7 +802,7 @@ private:
   template <typename Emit>
   void leaf_neighborhoods(const Node& nd, const FT& r2, Join_scratch& scratch, Emit emit) const
   {
-    std::array<double, 3> lo, hi;
+    std::array<double, 3> lo{}, hi{};
     double err = 0;
     scratch.queries.clear();
     for(std::uint32_t k = nd.begin; k != nd.end; ++k)
