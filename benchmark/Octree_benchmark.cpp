@@ -3,7 +3,9 @@
 //
 // Soup_topology::Octree against CGAL::Octree (Orthtree), CGAL::Kd_tree and brute force, on
 // 1M points of a subdivided bunny and on 1M uniform random points: build time, nearest vertex
-// within a radius, all vertices within a radius, all vertices near a segment.
+// within a radius, all vertices within a radius, all vertices near a segment. On clustered
+// near-duplicates (every vertex of a real mesh replaced by 20 close copies, as welding sees them):
+// the build, the radius query at every point against CGAL::Kd_tree, and the self-join.
 //
 // Run: Octree_benchmark [--benchmark_filter=...]; data from SOUP_TOPOLOGY_DATA_DIR/clean.
 
@@ -155,7 +157,41 @@ const Data_set& uniform()
   return data;
 }
 
-const Data_set& data_set(const benchmark::State& state) { return state.range(0) == 0 ? bunny() : uniform(); }
+// the 37,706 vertices of clean/bunny00.off, each replaced by 20 copies moved by up to 5e-7 of the
+// bounding-box diagonal, in random order (754,120 points); radius 2e-6 of the diagonal, so that
+// every point finds its whole cluster; the queries are the points themselves, in input order
+const Data_set& clustered()
+{
+  static const Data_set data = [] {
+    Data_set d;
+    d.name = "clustered";
+    const std::string off = soup_test::data_file("clean/bunny00.off.xz");
+    std::vector<Point> pts;
+    std::vector<std::array<std::size_t, 3>> tris;
+    if(!CGAL::IO::read_polygon_soup(off, pts, tris))
+    {
+      std::cerr << "cannot read " << off << "\n";
+      std::exit(EXIT_FAILURE);
+    }
+    const double diag = diagonal(pts);
+    std::mt19937 gen(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double move = 5e-7 * diag / std::sqrt(3.0);
+    for(const Point& p : pts)
+      for(int c = 0; c < 20; ++c)
+        d.points.emplace_back(p.x() + move * u(gen), p.y() + move * u(gen), p.z() + move * u(gen));
+    std::shuffle(d.points.begin(), d.points.end(), gen);
+    d.radius = 2e-6 * diag;
+    d.queries = d.points;
+    return d;
+  }();
+  return data;
+}
+
+const Data_set& data_set(const benchmark::State& state)
+{
+  return state.range(0) == 0 ? bunny() : (state.range(0) == 1 ? uniform() : clustered());
+}
 
 // --- competitors ----------------------------------------------------------------------------
 
@@ -455,22 +491,80 @@ void BM_segment_brute_force(benchmark::State& state)
   state.SetItemsProcessed(std::int64_t(state.iterations()));
 }
 
+// --- every point of the clustered set: radius queries against the self-join --------------------
+
+void BM_every_point_soup_octree(benchmark::State& state)
+{
+  const Data_set& d = data_set(state);
+  const ST::Octree<K> tree(d.points);
+  std::vector<std::size_t> out;
+  std::size_t found = 0;
+  for(auto _ : state)
+    for(const Point& q : d.queries)
+    {
+      out.clear();
+      tree.vertices_near_point(q, d.radius, std::back_inserter(out));
+      found += out.size();
+    }
+  state.SetLabel(d.name);
+  state.counters["found"] = double(found) / double(state.iterations());
+  state.SetItemsProcessed(std::int64_t(state.iterations() * d.queries.size()));
+}
+
+void BM_every_point_cgal_kd_tree(benchmark::State& state)
+{
+  const Data_set& d = data_set(state);
+  const Kd kd(d.points);
+  std::vector<std::size_t> out;
+  std::size_t found = 0;
+  for(auto _ : state)
+    for(const Point& q : d.queries)
+    {
+      out.clear();
+      kd.tree.search(std::back_inserter(out), Kd_sphere(q, d.radius, 0., kd.tree.traits()));
+      std::sort(out.begin(), out.end());
+      found += out.size();
+    }
+  state.SetLabel(d.name);
+  state.counters["found"] = double(found) / double(state.iterations());
+  state.SetItemsProcessed(std::int64_t(state.iterations() * d.queries.size()));
+}
+
+void BM_self_join_soup_octree(benchmark::State& state)
+{
+  const Data_set& d = data_set(state);
+  const ST::Octree<K> tree(d.points);
+  std::size_t found = 0;
+  for(auto _ : state)
+    tree.for_each_neighborhood(FT(d.radius), [&](std::size_t, const std::vector<std::size_t>& near) {
+      found += near.size();
+    });
+  state.SetLabel(d.name);
+  state.counters["found"] = double(found) / double(state.iterations());
+  state.SetItemsProcessed(std::int64_t(state.iterations() * d.points.size()));
+}
+
 } // namespace
 
 // 0 = subdivided bunny, 1 = uniform
-BENCHMARK(BM_build_soup_octree)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_build_soup_octree)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_build_cgal_orthtree)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_build_cgal_kd_tree)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_build_cgal_kd_tree)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_nearest_soup_octree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_nearest_cgal_orthtree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_nearest_cgal_kd_tree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_nearest_brute_force)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->Iterations(50);
-BENCHMARK(BM_near_point_soup_octree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_near_point_cgal_kd_tree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_near_point_soup_octree)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_near_point_cgal_kd_tree)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_segment_soup_octree_culling)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_segment_soup_octree_index_box)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_segment_cgal_orthtree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_segment_cgal_kd_tree)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_segment_brute_force)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->Iterations(50);
+
+// 2 = clustered near-duplicates; one iteration queries every point
+BENCHMARK(BM_every_point_soup_octree)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_every_point_cgal_kd_tree)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_self_join_soup_octree)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 BENCHMARK_MAIN();

@@ -633,8 +633,12 @@ void check_self_join(const std::vector<Xyz>& xyz, std::size_t capacity)
   for(double r : {0.0, 1e-6, 1e-3, 2e-2, 0.3})
   {
     std::vector<int> visits(pts.size(), 0);
+    std::optional<std::pair<std::uint64_t, std::size_t>> previous; // points come in (Morton code, index) order
     tree.for_each_neighborhood(typename K::FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
       ++visits[i];
+      const std::pair<std::uint64_t, std::size_t> current(tree.morton_code(i), i);
+      ASSERT_TRUE(!previous || *previous < current) << "point " << i << " radius " << r;
+      previous = current;
       std::vector<std::size_t> expected;
       tree.vertices_near_point(pts[i], typename K::FT(r), std::back_inserter(expected));
       ASSERT_EQ(near, expected) << "point " << i << " radius " << r;
@@ -653,6 +657,58 @@ TEST(Octree, SelfJoinMatchesPointQueries)
   check_self_join<SC>(uniform_points(2000, 9), 8);
 }
 
+// The double filter of the radius queries decides only what the kernel's exact predicate decides:
+// points at relative distances 1 - d and 1 + d of the radius from a centre, d from 0 to 1e-9 (the
+// filter's margin is 1e-12, the rounding of the coordinates about 1e-16), at three scales; the
+// point queries (from the centre and from the other points) and the self-join equal brute force.
+template <typename K>
+void check_filter_at_the_boundary(unsigned seed, double scale)
+{
+  using FT = typename K::FT;
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double offsets[] = {0, 1e-17, 1e-16, 3e-16, 1e-15, 1e-13, 1e-12, 2e-12, 1e-11, 1e-9};
+  for(int trial = 0; trial < 12; ++trial)
+  {
+    const Xyz c = {scale * u(gen), scale * u(gen), scale * u(gen)};
+    const double r = scale * std::pow(10.0, -3.0 + 3.0 * u(gen)); // 1e-6 to 1 of the scale
+    std::vector<Xyz> xyz{c, {c[0] + r, c[1], c[2]}, {c[0], c[1] - r, c[2]}};
+    for(double d : offsets)
+      for(double side : {-1.0, 1.0})
+        for(int k = 0; k < 4; ++k)
+        {
+          double v[3] = {g(gen), g(gen), g(gen)};
+          const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+          const double t = r * (1 + side * d) / l;
+          xyz.push_back({c[0] + t * v[0], c[1] + t * v[1], c[2] + t * v[2]});
+        }
+    const std::vector<typename K::Point_3> pts = to_points<K>(xyz);
+    for(std::size_t capacity : {1, 16})
+    {
+      const ST::Octree<K> tree(pts, ST::parameters::bucket_capacity(capacity));
+      for(std::size_t i = 0; i < pts.size(); i += 7)
+      {
+        std::vector<std::size_t> got;
+        tree.vertices_near_point(pts[i], FT(r), std::back_inserter(got));
+        ASSERT_EQ(got, brute_near_point<K>(pts, pts[i], FT(r))) << "trial " << trial << " point " << i;
+        ASSERT_EQ(tree.number_of_vertices_near_point(pts[i], FT(r)), got.size());
+      }
+      tree.for_each_neighborhood(FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
+        ASSERT_EQ(near, brute_near_point<K>(pts, pts[i], FT(r))) << "trial " << trial << " point " << i;
+      });
+    }
+  }
+}
+
+TEST(Octree, DoubleFilterAgreesWithExactPredicate)
+{
+  for(double scale : {1e-6, 1.0, 1e6})
+  {
+    check_filter_at_the_boundary<Epick>(61, scale);
+    check_filter_at_the_boundary<Epeck>(62, scale);
+  }
+}
 
 // The segment queries of for_each_segment_neighborhood() answer, for every segment between two
 // points of the tree, what vertices_near_segment() and a brute-force search answer, once per

@@ -217,7 +217,7 @@ public:
           }
         }
       }
-    });
+    }, frame_holding_box(qa.c, qa.c, bound));
     if(best == npos)
       return std::nullopt;
     return std::optional<std::size_t>(ids_[best]);
@@ -232,7 +232,8 @@ public:
   template <typename OutputIterator>
   OutputIterator vertices_near_point(const Point_3& q, const FT& radius, OutputIterator out) const
   {
-    std::vector<std::size_t> found = unsorted_vertices_near_point(q, radius);
+    Found_indices found;
+    unsorted_vertices_near_point(q, radius, found);
     std::sort(found.begin(), found.end());
     return std::copy(found.begin(), found.end(), out);
   }
@@ -243,7 +244,9 @@ public:
   /// \param radius the largest distance from `q`
   std::size_t number_of_vertices_near_point(const Point_3& q, const FT& radius) const
   {
-    return unsorted_vertices_near_point(q, radius).size();
+    Found_indices found;
+    unsorted_vertices_near_point(q, radius, found);
+    return found.size();
   }
 
   /// the number of points within `radius` of the closed segment `[a,b]`: the size of the answer
@@ -259,9 +262,10 @@ public:
   /// calls `callback(i, near)` for every point `i`, in Morton order, with `near` the indices of
   /// the points within `radius` of it (itself included), in increasing order: the answers of
   /// `vertices_near_point(point i, radius)` for all points at once (a self-join, as welding
-  /// needs). A point whose ball lies well inside its leaf's box (the common case when `radius` is
-  /// small against the leaves) is answered from its leaf alone, without a descent from the root;
-  /// the others go through `vertices_near_point()`. The decisions are the same as there.
+  /// needs). The candidates are gathered once per leaf: the points in the box of the leaf's
+  /// points grown by the radius, found from the deepest node that holds that box rather than
+  /// from the root; each point of the leaf then keeps the candidates within `radius` of it by
+  /// the decisions of `vertices_near_point()`.
   /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
   /// \param radius the largest distance between neighbors
   /// \param callback called once per point
@@ -323,18 +327,14 @@ public:
           out.near.clear();
           out.end.clear();
           out.point.clear();
-          std::vector<std::size_t> near;
+          Join_scratch scratch;
           for(std::size_t l = group_begin[first + g]; l != group_begin[first + g + 1]; ++l)
-          {
-            const Node& nd = nodes_[leaves[l].second];
-            for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-            {
-              neighborhood_of(k, leaves[l].first, nd, radius, r2, near);
-              out.near.insert(out.near.end(), near.begin(), near.end());
-              out.end.push_back(out.near.size());
-              out.point.push_back(k);
-            }
-          }
+            leaf_neighborhoods(nodes_[leaves[l].second], r2, scratch,
+                               [&](std::uint32_t k, const std::vector<std::size_t>& near) {
+                                 out.near.insert(out.near.end(), near.begin(), near.end());
+                                 out.end.push_back(out.near.size());
+                                 out.point.push_back(k);
+                               });
         });
         for(std::size_t g = 0; g < last - first; ++g)
         {
@@ -350,13 +350,11 @@ public:
       return;
     }
     (void)internal::runs_in_parallel<ConcurrencyTag>();
-    std::vector<std::size_t> near;
-    traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-      {
-        neighborhood_of(k, f, nd, radius, r2, near);
-        callback(std::size_t(ids_[k]), static_cast<const std::vector<std::size_t>&>(near));
-      }
+    Join_scratch scratch;
+    traverse([](const Frame&, double&) { return true; }, [&](const Frame&, const Node& nd) {
+      leaf_neighborhoods(nd, r2, scratch, [&](std::uint32_t k, const std::vector<std::size_t>& near) {
+        callback(std::size_t(ids_[k]), near);
+      });
     });
   }
 
@@ -534,22 +532,51 @@ public:
   /// @}
 
 private:
-  /// the points within `radius` of `q`, in the order the leaves are scanned (the decisions of
-  /// `vertices_near_point()`).
-  std::vector<std::size_t> unsorted_vertices_near_point(const Point_3& q, const FT& radius) const
+  /// the indices found by one query: in place up to `local_capacity`, on the heap beyond (a
+  /// query of a small radius allocates nothing)
+  class Found_indices
+  {
+  public:
+    void push_back(std::size_t i)
+    {
+      if(size_ < local_capacity)
+        local_[size_] = i;
+      else
+      {
+        if(size_ == local_capacity)
+          heap_.assign(local_.begin(), local_.end());
+        heap_.push_back(i);
+      }
+      ++size_;
+    }
+    std::size_t* begin() { return size_ <= local_capacity ? local_.data() : heap_.data(); }
+    std::size_t* end() { return begin() + size_; }
+    std::size_t size() const { return size_; }
+
+  private:
+    static constexpr std::size_t local_capacity = 64;
+    std::array<std::size_t, local_capacity> local_;
+    std::vector<std::size_t> heap_;
+    std::size_t size_ = 0;
+  };
+
+  /// appends to `found` the points within `radius` of `q`, in the order the leaves are scanned
+  /// (the decisions of `vertices_near_point()`). The descent starts from the deepest node that
+  /// holds the box of the ball (see `frame_holding_box()`).
+  template <typename Collector>
+  void unsorted_vertices_near_point(const Point_3& q, const FT& radius, Collector& found) const
   {
     check_radius(radius);
-    std::vector<std::size_t> found;
     if(empty())
-      return found;
+      return;
     const FT r2 = radius * radius;
     const Query_point qa = approximate(q);
     const double bound = radius_bound(r2, qa.err);
     const double bound2 = bound * bound;
     traverse(
       [&](const Frame& f, double&) { return !(box_point_squared_distance(f, qa.c) > bound2); },
-      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); });
-    return found;
+      [&](const Frame&, const Node& nd) { scan_leaf(nd, q, qa.c, r2, bound2, found); },
+      frame_holding_box(qa.c, qa.c, bound));
   }
 
   /// the points within `radius` of the closed segment `[a,b]`, unsorted (the decisions of
@@ -560,9 +587,12 @@ private:
     check_radius(radius);
     if(empty())
       return {};
-    if(gt_.equal_3_object()(a, b))
-      return unsorted_vertices_near_point(a, radius);
     std::vector<std::size_t> found;
+    if(gt_.equal_3_object()(a, b))
+    {
+      unsorted_vertices_near_point(a, radius, found);
+      return found;
+    }
     scan_near_segment(a, b, radius, strategy, [](const std::array<double, 3>&, const std::array<double, 3>&, double) {
       return Frame{0, {{0, 0, 0}}};
     }, found);
@@ -679,6 +709,42 @@ private:
     }, start(lo, hi, bound));
   }
 
+  // the deepest node on the way from the root whose box holds the integer addresses of every
+  // coordinate of the box `[lo - grow, hi + grow]` (the root if a bound is not finite). Every
+  // point whose approximate coordinates lie in that box is in its subtree: an address is the
+  // rounded-down image of the coordinate by a monotone computation, so a coordinate between
+  // two others has an address between theirs, whatever the roundings.
+  Frame frame_holding_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double grow) const
+  {
+    Frame f{0, {{0, 0, 0}}};
+    Address ilo, ihi;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      const double a = lo[i] - grow, b = hi[i] + grow;
+      if(!(std::isfinite(a) && std::isfinite(b)))
+        return f;
+      ilo[i] = index_of(a, i, 0);
+      ihi[i] = index_of(b, i, 0);
+    }
+    for(;;)
+    {
+      const Node& nd = nodes_[f.node];
+      if(nd.first_child == 0)
+        return f;
+#if defined(__GNUC__) || defined(__clang__)
+      // where the blocks of the next levels are when one child only is split (depth-first layout)
+      if(std::size_t(nd.first_child) + 24 <= nodes_.size())
+        for(std::size_t ahead = 8; ahead < 24; ahead += 4)
+          __builtin_prefetch(nodes_.data() + nd.first_child + ahead);
+#endif
+      const unsigned shift = depth_ - 1 - nd.level;
+      const Address c{{ilo[0] >> shift, ilo[1] >> shift, ilo[2] >> shift}};
+      if(c[0] != (ihi[0] >> shift) || c[1] != (ihi[1] >> shift) || c[2] != (ihi[2] >> shift))
+        return f;
+      f = child_frame(f, nd, int((c[0] & 1) << 2 | (c[1] & 1) << 1 | (c[2] & 1)));
+    }
+  }
+
   // the frames from the root (`path[0]`) to the leaf of frame `f` (`path[level of f]`)
   void frames_to_leaf(const Frame& f, std::array<Frame, largest_maximum_depth + 1>& path) const
   {
@@ -696,7 +762,7 @@ private:
   }
 
   // the deepest frame of `path[0..level]` whose box holds the box [lo, hi] grown by twice `grow`
-  // on every side (the margin covers the rounding of the addresses, as in `neighborhood_of()`);
+  // on every side (the margin covers the rounding of the box corners and of the addresses);
   // the root holds every point
   Frame smallest_box_holding(const std::array<Frame, largest_maximum_depth + 1>& path, unsigned level,
                              const std::array<double, 3>& lo, const std::array<double, 3>& hi, double grow) const
@@ -719,28 +785,80 @@ private:
     return path[0];
   }
 
-  // The neighborhood of the point stored at `k` in leaf `nd` (frame `f`), in increasing order: from
-  // the leaf alone when the ball lies well inside the leaf's box, else from a query from the root.
-  void neighborhood_of(std::uint32_t k, const Frame& f, const Node& nd, const FT& radius, const FT& r2,
-                       std::vector<std::size_t>& near) const
+  // what the self-join reuses from one leaf to the next
+  struct Join_scratch
   {
-    near.clear();
-    const double cs = cell_size_[nd.level];
-    const Query_point qa = approximate(points_[k]);
-    const double bound = radius_bound(r2, qa.err);
-    bool inside = std::isfinite(bound);
-    for(std::size_t i = 0; i < 3 && inside; ++i)
+    std::vector<Query_point> queries;      // the points of the leaf, approximated
+    std::vector<std::uint32_t> candidates; // positions of the points near the leaf
+    std::vector<std::size_t> near;         // the neighborhood of one point
+  };
+
+  // The neighborhoods of the points of leaf `nd`: `emit(k, near)` for every position `k` of the
+  // leaf in increasing order, `near` the indices of the points within sqrt(r2) of point `k`, in
+  // increasing order. The candidates are the points whose approximate coordinates lie in the box
+  // of the leaf's points grown by the largest of their bounds (every neighbor of a point of the
+  // leaf does, as for the pruning of `vertices_near_point()`), gathered once from the deepest
+  // node holding that box; each point keeps the candidates that `scan_leaf()` would keep for it.
+  template <typename Emit>
+  void leaf_neighborhoods(const Node& nd, const FT& r2, Join_scratch& scratch, Emit emit) const
+  {
+    std::array<double, 3> lo{}, hi{};
+    double err = 0;
+    scratch.queries.clear();
+    for(std::uint32_t k = nd.begin; k != nd.end; ++k)
     {
-      const double lo = origin_[i] + f.c[i] * cs;
-      inside = qa.c[i] - lo > 2 * bound && (lo + cs) - qa.c[i] > 2 * bound;
+      const Query_point qa = approximate(points_[k]);
+      scratch.queries.push_back(qa);
+      err = std::max(err, qa.err);
+      for(std::size_t i = 0; i < 3; ++i)
+      {
+        lo[i] = k == nd.begin ? qa.c[i] : std::min(lo[i], qa.c[i]);
+        hi[i] = k == nd.begin ? qa.c[i] : std::max(hi[i], qa.c[i]);
+      }
     }
-    if(inside)
+    const double grow = radius_bound(r2, err);
+    double box_lo[3], box_hi[3];
+    for(std::size_t i = 0; i < 3; ++i)
     {
-      scan_leaf(nd, points_[k], qa.c, r2, bound * bound, near);
-      std::sort(near.begin(), near.end());
+      box_lo[i] = lo[i] - grow;
+      box_hi[i] = hi[i] + grow;
     }
-    else
-      vertices_near_point(points_[k], radius, std::back_inserter(near));
+    const bool bounded = std::isfinite(box_lo[0]) && std::isfinite(box_lo[1]) && std::isfinite(box_lo[2]) &&
+                         std::isfinite(box_hi[0]) && std::isfinite(box_hi[1]) && std::isfinite(box_hi[2]);
+    scratch.candidates.clear();
+    traverse(
+      [&](const Frame& f, double&) { return !bounded || box_meets_box(f, box_lo, box_hi); },
+      [&](const Frame&, const Node& c) {
+        for(std::uint32_t j = c.begin; j != c.end; ++j)
+          if(!bounded || in_box(j, box_lo, box_hi))
+            scratch.candidates.push_back(j);
+      },
+      frame_holding_box(lo, hi, grow));
+    typename Geom_traits::Compare_squared_distance_3 compare_sq = gt_.compare_squared_distance_3_object();
+    for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+    {
+      const Query_point& qa = scratch.queries[k - nd.begin];
+      const double bound = radius_bound(r2, qa.err);
+      scratch.near.clear();
+      for(const std::uint32_t j : scratch.candidates)
+        if(is_near(j, points_[k], qa.c, r2, bound * bound, compare_sq))
+          scratch.near.push_back(ids_[j]);
+      std::sort(scratch.near.begin(), scratch.near.end());
+      emit(k, static_cast<const std::vector<std::size_t>&>(scratch.near));
+    }
+  }
+
+  // does the box of `f`, widened by the margin of the addresses, meet the box [lo, hi]?
+  bool box_meets_box(const Frame& f, const double* lo, const double* hi) const
+  {
+    const double cs = cell_size_[nodes_[f.node].level];
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      const double box_lo = origin_[i] + f.c[i] * cs;
+      if(box_lo - margin_ > hi[i] || box_lo + cs + margin_ < lo[i])
+        return false;
+    }
+    return true;
   }
 
   // The depth-first traversal of every query, from the root or from `start`. A node is entered
@@ -767,7 +885,8 @@ private:
         push_children_nearest_first(f, nd, box_test, stack);
       else
         for(int i = 7; i >= 0; --i)
-          stack.push_back(child_frame(f, nd, i));
+          if(nodes_[nd.first_child + Node_index(i)].begin != nodes_[nd.first_child + Node_index(i)].end)
+            stack.push_back(child_frame(f, nd, i));
     }
   }
 
@@ -958,21 +1077,28 @@ private:
     }
   }
 
-  // step 5: the nodes, breadth first; a node is split if it holds more than `capacity` points of
-  // at least two different addresses (splitting identical addresses cannot separate them)
+  // step 5: the nodes; a node is split if it holds more than `capacity` points of at least two
+  // different addresses (splitting identical addresses cannot separate them). The blocks of 8
+  // children are laid out depth first: the blocks of a path from the root to a leaf come in
+  // increasing order, and those of a small subtree are close together, so that a descent reads
+  // memory forward.
   void build_nodes(const std::vector<Key>& keys)
   {
     const std::size_t n = keys.size();
     nodes_.clear();
     nodes_.push_back(Node{0, std::uint32_t(n), 0, 0});
-    for(std::size_t ni = 0; ni < nodes_.size(); ++ni)
+    std::vector<Node_index> pending{0};
+    while(!pending.empty())
     {
+      const Node_index ni = pending.back();
+      pending.pop_back();
       const Node nd = nodes_[ni];
       if(nd.end - nd.begin <= capacity_ || nd.level >= depth_ ||
          keys[nd.begin].code == keys[nd.end - 1].code)
         continue;
       const unsigned shift = 3 * (depth_ - 1 - nd.level);
-      nodes_[ni].first_child = std::uint32_t(nodes_.size());
+      const Node_index first = Node_index(nodes_.size());
+      nodes_[ni].first_child = first;
       std::uint32_t begin = nd.begin;
       for(std::uint64_t oct = 0; oct < 8; ++oct)
       {
@@ -986,6 +1112,9 @@ private:
         nodes_.push_back(Node{begin, end, 0, nd.level + 1});
         begin = end;
       }
+      for(Node_index oct = 8; oct-- > 0;)
+        if(nodes_[first + oct].end - nodes_[first + oct].begin > capacity_)
+          pending.push_back(first + oct);
     }
   }
 
@@ -1090,22 +1219,39 @@ private:
   // coordinates in double, `bound2` the widened squared radius of the pruning). With double
   // coordinates the squared distance computed in double is within a few ulps of the exact one:
   // far from r2 it decides alone, near it the kernel decides.
+  template <typename Collector>
   void scan_leaf(const Node& nd, const Point_3& q, const std::array<double, 3>& qc, const FT& r2, double bound2,
-                 std::vector<std::size_t>& found) const
+                 Collector& found) const
   {
     typename Geom_traits::Compare_squared_distance_3 compare_sq = gt_.compare_squared_distance_3_object();
-    const double r2d = CGAL::to_double(r2);
-    const bool filter = double_coordinates && r2d > 1e-250 && r2d < 1e250;
     for(std::uint32_t j = nd.begin; j != nd.end; ++j)
+      if(is_near(j, q, qc, r2, bound2, compare_sq))
+        found.push_back(ids_[j]);
+  }
+
+  // whether the point stored at `j` is within sqrt(r2) of `q`: the decision of every radius
+  // query. A point whose squared distance computed in double exceeds `bound2` is out; with
+  // double coordinates that distance is within a relative 5 ulps of the exact one (a sum of
+  // rounded squares of rounded differences, all non-negative, away from underflow), so that far
+  // enough from r2 it decides alone; near r2 the kernel decides.
+  bool is_near(std::uint32_t j, const Point_3& q, const std::array<double, 3>& qc, const FT& r2, double bound2,
+               typename Geom_traits::Compare_squared_distance_3& compare_sq) const
+  {
+    const double d2 = point_squared_distance(j, qc);
+    if(d2 > bound2)
+      return false;
+    if constexpr(double_coordinates)
     {
-      const double d2 = point_squared_distance(j, qc);
-      if(d2 > bound2)
-        continue;
-      if(filter && d2 < r2d * (1 - 1e-12) && (d2 == 0 || d2 > 1e-250))
-        found.push_back(ids_[j]);
-      else if(!(filter && d2 > r2d * (1 + 1e-12)) && compare_sq(q, points_[j], r2) != CGAL::LARGER)
-        found.push_back(ids_[j]);
+      const double r2d = r2;
+      if(r2d > 1e-250 && r2d < 1e250)
+      {
+        if(d2 < r2d * (1 - 1e-12) && (d2 == 0 || d2 > 1e-250))
+          return true;
+        if(d2 > r2d * (1 + 1e-12))
+          return false;
+      }
     }
+    return compare_sq(q, points_[j], r2) != CGAL::LARGER;
   }
 
   // an upper bound on the radius, widened by every error of the double computations
