@@ -215,9 +215,11 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     if(policy == Small_features::COLLAPSE)
       throw Invalid_input("snap_vertices: Small_features::COLLAPSE removes triangles: the triangle range needs resize()");
 
-  // The points, read once: a readable map may return them by value.
-  const auto point_copy = NP_helper::read_points(points, np);
-  internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_copy, tables, eps, fixed, kernel,
+  // The points, read once (a readable map may return them by value); a vector of points under
+  // the identity map is used as it is.
+  std::vector<typename NP_helper::Point> point_storage;
+  const auto& point_vector = NP_helper::points_as_vector(points, np, point_storage);
+  internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_vector, tables, eps, fixed, kernel,
                                                                                   visitor.get(), policy);
   return worker.template run<ConcurrencyTag>(triangles);
 }

@@ -170,8 +170,11 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
   Visitor_given visitor = CGAL::parameters::choose_parameter<Visitor_given>(
     CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor));
+  // The points, read once (a readable map may return them by value); a vector of points under
+  // the identity map is used as it is.
+  std::vector<typename NP_helper::Point> point_storage;
   internal::T_junction_splitter<Kernel, Split_report, typename Visitor_type::type> splitter(
-    NP_helper::read_points(points, np), tables, kernel, eps, Visitor_type::get(visitor));
+    NP_helper::points_as_vector(points, np, point_storage), tables, kernel, eps, Visitor_type::get(visitor));
   const Split_report report = splitter.template run<ConcurrencyTag>();
   // Write the triangles back: the split ones and the new ones.
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {

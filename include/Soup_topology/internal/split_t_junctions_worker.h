@@ -60,9 +60,9 @@ public:
 
   /// `points` all points of the soup, `eps` the (checked) absolute tolerance, `visitor` told of
   /// each split, refusal and ambiguous vertex.
-  T_junction_splitter(std::vector<Point>&& points, Adjacency_tables& tables, const Kernel& kernel, const FT& eps,
+  T_junction_splitter(const std::vector<Point>& points, Adjacency_tables& tables, const Kernel& kernel, const FT& eps,
                       Visitor& visitor)
-    : points_(std::move(points)), tables_(tables), visitor_(visitor), kernel_(kernel), eps_(eps), eps2_(eps * eps),
+    : points_(points), tables_(tables), visitor_(visitor), kernel_(kernel), eps_(eps), eps2_(eps * eps),
       four_eps2_(4 * eps2_), eps2d_(CGAL::to_double(eps2_)),
       compare_sq_(kernel.compare_squared_distance_3_object()),
       compare_distance_(kernel.compare_distance_3_object()), less_xyz_(kernel.less_xyz_3_object()),
@@ -428,7 +428,7 @@ private:
     }
   }
 
-  const std::vector<Point> points_; // all points, read once (a readable map may return them by value)
+  const std::vector<Point>& points_; // all points, read once (a readable map may return them by value); kept by reference
   Adjacency_tables& tables_;
   Visitor& visitor_;
   const Kernel kernel_;

@@ -153,6 +153,21 @@ struct Soup_np_helper
     for(const auto& e : points) copy.push_back(get(pm, e));
     return copy;
   }
+  /// the points of `points` as a vector: `points` itself when it is a vector of points read
+  /// through the identity map (no copy), otherwise `read_points()` kept in `storage`.
+  static const std::vector<Point>& points_as_vector(const PointRange& points, const NamedParameters& np,
+                                                   std::vector<Point>& storage)
+  {
+    if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&
+                 (std::is_same<Point_map, CGAL::Identity_property_map<const Point>>::value ||
+                  std::is_same<Point_map, CGAL::Identity_property_map<Point>>::value)) {
+      (void)np;
+      return points;
+    } else {
+      storage = read_points(points, np);
+      return storage;
+    }
+  }
   /// checks the points (finite) and the tables (they describe `triangles` over `points`), then
   /// returns the tolerance; throws `Invalid_input` naming `function` otherwise.
   template <class TriangleRange>
