@@ -1040,6 +1040,23 @@ TEST(SnapVertices, Issue13ChainOfUncoveredCollapsesIsRefusedLinkByLink)
   if(!soup_test::sanitized_build) { EXPECT_LT(seconds, 5.0); }
 }
 
+// The weld and the splitter read the points once; a vector of points under the identity map (the
+// pipeline's case) is used as it is, any other point map gives a copy of the points it reads.
+TEST(SnapVertices, Issue13PointsUnderTheIdentityMapAreNotCopied)
+{
+  const std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  std::vector<Point> storage;
+  const auto identity = CGAL::parameters::default_values();
+  using Identity_helper = ST::internal::Soup_np_helper<std::vector<Point>, std::decay_t<decltype(identity)>>;
+  EXPECT_EQ(&Identity_helper::points_as_vector(points, identity, storage), &points);
+  EXPECT_TRUE(storage.empty());
+  const auto by_value = CGAL::parameters::point_map(CGAL::Identity_property_map_no_lvalue<Point>());
+  using By_value_helper = ST::internal::Soup_np_helper<std::vector<Point>, std::decay_t<decltype(by_value)>>;
+  const std::vector<Point>& read = By_value_helper::points_as_vector(points, by_value, storage);
+  EXPECT_EQ(&read, &storage);
+  EXPECT_EQ(read, points);
+}
+
 } // namespace
 
 } // namespace snap_vertices_test
