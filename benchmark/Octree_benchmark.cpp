@@ -87,6 +87,17 @@ void subdivide(std::vector<Point>& points, std::vector<std::array<std::size_t, 3
   triangles.swap(out);
 }
 
+// clean/bunny00.off of the shared data folder (the program stops when it cannot be read)
+void read_bunny(std::vector<Point>& points, std::vector<std::array<std::size_t, 3>>& triangles)
+{
+  const std::string off = soup_test::data_file("clean/bunny00.off.xz");
+  if(!CGAL::IO::read_polygon_soup(off, points, triangles))
+  {
+    std::cerr << "cannot read " << off << "\n";
+    std::exit(EXIT_FAILURE);
+  }
+}
+
 void make_queries(Data_set& d, std::mt19937& gen)
 {
   std::uniform_real_distribution<double> u(-1, 1);
@@ -103,14 +114,9 @@ const Data_set& bunny()
   static const Data_set data = [] {
     Data_set d;
     d.name = "bunny";
-    const std::string off = soup_test::data_file("clean/bunny00.off.xz");
     std::vector<Point> pts;
     std::vector<std::array<std::size_t, 3>> tris;
-    if(!CGAL::IO::read_polygon_soup(off, pts, tris))
-    {
-      std::cerr << "cannot read " << off << "\n";
-      std::exit(EXIT_FAILURE);
-    }
+    read_bunny(pts, tris);
     // twice gives ~0.6M vertices, a third time ~2.4M: keep 1M of those, at random
     subdivide(pts, tris);
     subdivide(pts, tris);
@@ -165,14 +171,9 @@ const Data_set& clustered()
   static const Data_set data = [] {
     Data_set d;
     d.name = "clustered";
-    const std::string off = soup_test::data_file("clean/bunny00.off.xz");
     std::vector<Point> pts;
     std::vector<std::array<std::size_t, 3>> tris;
-    if(!CGAL::IO::read_polygon_soup(off, pts, tris))
-    {
-      std::cerr << "cannot read " << off << "\n";
-      std::exit(EXIT_FAILURE);
-    }
+    read_bunny(pts, tris);
     const double diag = diagonal(pts);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> u(-1, 1);
