@@ -64,36 +64,17 @@ void for_each_triangle(const TriangleRange& triangles, const Function& f)
 }
 
 // Whether two of the points `order` lists have different coordinates (as doubles) but equal
-// `rounded` points; `rounded[i]` is point i rounded to float. An open-addressing hash table of
-// the rounded points, filled in the order of `order`.
+// `rounded` points; `rounded[i]` is point i rounded to float. The points equal in float are found
+// by the hash of the exact weld (`first_equal_points()`), each compared with the first of its kind.
 template <class PointRange, class Float_point>
 bool has_distinct_points_equal_in_float(const PointRange& points, const std::vector<Float_point>& rounded,
                                         const std::vector<std::size_t>& order)
 {
-  std::size_t capacity = 16;
-  while(capacity < 2 * order.size()) capacity *= 2;
-  const std::size_t mask = capacity - 1;
-  constexpr std::size_t empty = static_cast<std::size_t>(-1);
-  std::vector<std::size_t> slots(capacity, empty);
-  // + 0.0 makes -0.0 and 0.0, which compare equal, the same bits
-  auto bits = [](double x) { return Soup_topology::internal::double_bits(x + 0.0); };
-  using Soup_topology::internal::mix_bits;
-  for(const std::size_t i : order) {
-    const Float_point& r = rounded[i];
-    std::size_t h = static_cast<std::size_t>(
-      mix_bits(bits(r.x()) ^ mix_bits(bits(r.y()) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(bits(r.z())) << 1)));
-    for(;; h = (h + 1) & mask) {
-      std::size_t& slot = slots[h & mask];
-      if(slot == empty) {
-        slot = i;
-        break;
-      }
-      if(rounded[slot] == r) {
-        if(write_coordinates(points[slot]) != write_coordinates(points[i])) return true;
-        break;
-      }
-    }
-  }
+  const std::vector<std::uint32_t> first_of = Soup_topology::internal::first_equal_points(
+    order.size(), [&](std::size_t k) -> const Float_point& { return rounded[order[k]]; });
+  for(std::size_t k = 0; k < order.size(); ++k)
+    if(first_of[k] != k && write_coordinates(points[order[first_of[k]]]) != write_coordinates(points[order[k]]))
+      return true;
   return false;
 }
 
