@@ -67,6 +67,11 @@ void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsi
 {
   const std::size_t n = items.size();
   if(n < 2) return;
+  if(n < 4096) {
+    // Fewer items than the digits' counters: a comparison sort, stable as well, the same order.
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+    return;
+  }
   buffer.resize(n);
   std::vector<std::size_t> count(std::size_t(1) << 16);
   for(unsigned shift = 0; shift < bits; shift += 16) {
