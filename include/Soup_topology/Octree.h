@@ -292,25 +292,12 @@ public:
     const FT r2 = radius * radius;
     if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
     {
-      // The leaves in traversal (Morton) order, cut into groups of about `group_size` points;
-      // a batch of groups is searched in parallel, each group into its own buffer, then the
-      // callbacks of the batch are made in order.
-      std::vector<std::pair<Frame, Node_index>> leaves;
-      traverse([](const Frame&, double&) { return true; },
-               [&](const Frame& f, const Node& nd) { leaves.emplace_back(f, static_cast<Node_index>(&nd - nodes_.data())); });
-      constexpr std::size_t group_size = 2048, batch = 64;
-      std::vector<std::size_t> group_begin{0};
-      for(std::size_t l = 0, count = 0; l < leaves.size(); ++l)
-      {
-        const Node& nd = nodes_[leaves[l].second];
-        count += nd.end - nd.begin;
-        if(count >= group_size || l + 1 == leaves.size())
-        {
-          group_begin.push_back(l + 1);
-          count = 0;
-        }
-      }
-      const std::size_t groups = group_begin.size() - 1;
+      // The leaves in traversal (Morton) order, cut into groups of about 2048 points; a batch of
+      // groups is searched in parallel, each group into its own buffer, then the callbacks of the
+      // batch are made in order.
+      const Leaf_groups leaf_groups = leaves_in_groups([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
+      constexpr std::size_t batch = 64;
+      const std::size_t groups = leaf_groups.size();
       struct Found
       {
         std::vector<std::size_t> near;    // the neighborhoods one after the other
@@ -328,8 +315,8 @@ public:
           out.end.clear();
           out.point.clear();
           Join_scratch scratch;
-          for(std::size_t l = group_begin[first + g]; l != group_begin[first + g + 1]; ++l)
-            leaf_neighborhoods(nodes_[leaves[l].second], r2, scratch,
+          for(std::size_t l = leaf_groups.begin[first + g]; l != leaf_groups.begin[first + g + 1]; ++l)
+            leaf_neighborhoods(nodes_[leaf_groups.leaves[l].second], r2, scratch,
                                [&](std::uint32_t k, const std::vector<std::size_t>& near) {
                                  out.near.insert(out.near.end(), near.begin(), near.end());
                                  out.end.push_back(out.near.size());
@@ -411,53 +398,84 @@ public:
   void for_each_segment_neighborhood(const SegmentRange& segments, const FT& radius, Callback callback) const
   {
     check_radius(radius);
-    const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(segments), std::end(segments)));
-    // the segments bucketed by the sorted position of their first ends (a counting sort)
-    std::vector<std::uint32_t> first_end(m), second_end(m);
-    std::vector<std::size_t> bucket(size() + 1, 0);
-    for(std::size_t s = 0; s < m; ++s)
-    {
-      const auto& e = *(std::begin(segments) + static_cast<std::ptrdiff_t>(s));
-      first_end[s] = position(static_cast<std::size_t>(e[0]));
-      second_end[s] = position(static_cast<std::size_t>(e[1]));
-      ++bucket[first_end[s] + 1];
-    }
-    if(m == 0)
+    const Segments_by_first_end by_first = segments_by_first_end(segments);
+    if(by_first.order.empty())
       return;
-    for(std::size_t k = 1; k < bucket.size(); ++k)
-      bucket[k] += bucket[k - 1];
-    std::vector<std::uint32_t> order(m);
-    {
-      std::vector<std::size_t> next(bucket.begin(), bucket.end() - 1);
-      for(std::size_t s = 0; s < m; ++s)
-        order[next[first_end[s]]++] = static_cast<std::uint32_t>(s);
-    }
     std::array<Frame, largest_maximum_depth + 1> path;
     std::vector<std::size_t> near;
     traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      if(bucket[nd.begin] == bucket[nd.end])
-        return;
-      frames_to_leaf(f, path);
-      const auto smallest_box_around = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi,
-                                           double grow) {
-        return smallest_box_holding(path, nd.level, lo, hi, grow);
-      };
-      for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-        for(std::size_t j = bucket[k]; j != bucket[k + 1]; ++j)
-        {
-          const std::uint32_t s = order[j];
-          near.clear();
-          const Point_3& b = points_[second_end[s]];
-          if(gt_.equal_3_object()(points_[k], b))
-            vertices_near_point(b, radius, std::back_inserter(near));
-          else
-          {
-            scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
-            std::sort(near.begin(), near.end());
-          }
-          callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
-        }
+      segments_of_leaf(f, nd, by_first, radius, path, near, callback);
     });
+  }
+
+  /// calls `callback(i, near)` for every point `i` with the arguments of `for_each_neighborhood()`;
+  /// with `CGAL::Parallel_tag` (and coordinates stored as `double`) the calls are made on TBB's
+  /// threads, several at once and in no particular order, so `callback` must be safe to call
+  /// concurrently for different points (e.g. write only what belongs to point `i`). Sequentially,
+  /// the calls are those of `for_each_neighborhood()`, in Morton order. Nothing is buffered: the
+  /// neighborhoods are handed over as they are found.
+  /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
+  ///         `CGAL::Parallel_if_available_tag`
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \param radius the largest distance between neighbors
+  /// \param callback called once per point
+  template <typename ConcurrencyTag, typename Callback>
+  void for_each_neighborhood_concurrently(const FT& radius, Callback callback) const
+  {
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
+    {
+      check_radius(radius);
+      if(empty())
+        return;
+      const FT r2 = radius * radius;
+      const Leaf_groups groups = leaves_in_groups([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
+      internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
+        Join_scratch scratch;
+        for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
+          leaf_neighborhoods(nodes_[groups.leaves[l].second], r2, scratch,
+                             [&](std::uint32_t k, const std::vector<std::size_t>& near) {
+                               callback(std::size_t(ids_[k]), near);
+                             });
+      });
+    }
+    else
+      for_each_neighborhood<CGAL::Sequential_tag>(radius, callback);
+  }
+
+  /// calls `callback(s, near)` for every segment `s` of `segments` with the arguments of
+  /// `for_each_segment_neighborhood()`; with `CGAL::Parallel_tag` (and coordinates stored as
+  /// `double`) the calls are made on TBB's threads, several at once and in no particular order,
+  /// so `callback` must be safe to call concurrently for different segments. Sequentially, the
+  /// calls are those of `for_each_segment_neighborhood()`.
+  /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
+  ///         `CGAL::Parallel_if_available_tag`
+  /// \tparam SegmentRange as for `for_each_segment_neighborhood()`
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \param segments the segments, by the indices of their ends
+  /// \param radius the largest distance from a segment
+  /// \param callback called once per segment
+  template <typename ConcurrencyTag, typename SegmentRange, typename Callback>
+  void for_each_segment_neighborhood_concurrently(const SegmentRange& segments, const FT& radius,
+                                                  Callback callback) const
+  {
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
+    {
+      check_radius(radius);
+      const Segments_by_first_end by_first = segments_by_first_end(segments);
+      if(by_first.order.empty())
+        return;
+      const Leaf_groups groups = leaves_in_groups([&](const Node& nd) {
+        return by_first.bucket[nd.end] - by_first.bucket[nd.begin];
+      });
+      internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
+        std::array<Frame, largest_maximum_depth + 1> path;
+        std::vector<std::size_t> near;
+        for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
+          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, path, near, callback);
+      });
+    }
+    else
+      for_each_segment_neighborhood(segments, radius, callback);
   }
 
   /// @}
@@ -783,6 +801,101 @@ private:
         return f;
     }
     return path[0];
+  }
+
+  // The segments of `for_each_segment_neighborhood()` bucketed by the sorted position of their
+  // first ends (a counting sort): the segments whose first end is at position k are
+  // `order[bucket[k]], ..., order[bucket[k + 1] - 1]`, in the order of the range.
+  struct Segments_by_first_end
+  {
+    std::vector<std::uint32_t> second_end; // by segment, the sorted position of its second end
+    std::vector<std::size_t> bucket;
+    std::vector<std::uint32_t> order;
+  };
+  template <typename SegmentRange>
+  Segments_by_first_end segments_by_first_end(const SegmentRange& segments) const
+  {
+    const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(segments), std::end(segments)));
+    Segments_by_first_end out;
+    std::vector<std::uint32_t> first_end(m);
+    out.second_end.resize(m);
+    out.bucket.assign(size() + 1, 0);
+    for(std::size_t s = 0; s < m; ++s)
+    {
+      const auto& e = *(std::begin(segments) + static_cast<std::ptrdiff_t>(s));
+      first_end[s] = position(static_cast<std::size_t>(e[0]));
+      out.second_end[s] = position(static_cast<std::size_t>(e[1]));
+      ++out.bucket[first_end[s] + 1];
+    }
+    if(m == 0)
+      return out;
+    for(std::size_t k = 1; k < out.bucket.size(); ++k)
+      out.bucket[k] += out.bucket[k - 1];
+    out.order.resize(m);
+    std::vector<std::size_t> next(out.bucket.begin(), out.bucket.end() - 1);
+    for(std::size_t s = 0; s < m; ++s)
+      out.order[next[first_end[s]]++] = static_cast<std::uint32_t>(s);
+    return out;
+  }
+
+  // The queries of the segments whose first ends lie in the leaf `nd` (frame `f`), each started
+  // from the smallest box around the leaf that holds the segment grown by the radius.
+  template <typename Callback>
+  void segments_of_leaf(const Frame& f, const Node& nd, const Segments_by_first_end& by_first, const FT& radius,
+                        std::array<Frame, largest_maximum_depth + 1>& path, std::vector<std::size_t>& near,
+                        Callback& callback) const
+  {
+    if(by_first.bucket[nd.begin] == by_first.bucket[nd.end])
+      return;
+    frames_to_leaf(f, path);
+    const auto smallest_box_around = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+                                         double grow) {
+      return smallest_box_holding(path, nd.level, lo, hi, grow);
+    };
+    for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+      for(std::size_t j = by_first.bucket[k]; j != by_first.bucket[k + 1]; ++j)
+      {
+        const std::uint32_t s = by_first.order[j];
+        near.clear();
+        const Point_3& b = points_[by_first.second_end[s]];
+        if(gt_.equal_3_object()(points_[k], b))
+          vertices_near_point(b, radius, std::back_inserter(near));
+        else
+        {
+          scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
+          std::sort(near.begin(), near.end());
+        }
+        callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
+      }
+  }
+
+  // The leaves in traversal (Morton) order, cut into groups of about `group_weight` of
+  // `weight(leaf)` each: the blocks of the concurrent searches (they do not depend on the number
+  // of threads).
+  struct Leaf_groups
+  {
+    std::vector<std::pair<Frame, Node_index>> leaves;
+    std::vector<std::size_t> begin; // group g holds leaves[begin[g]], ..., leaves[begin[g + 1] - 1]
+    std::size_t size() const { return begin.size() - 1; }
+  };
+  template <typename Weight>
+  Leaf_groups leaves_in_groups(const Weight& weight, std::size_t group_weight = 2048) const
+  {
+    Leaf_groups out;
+    traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
+      out.leaves.emplace_back(f, static_cast<Node_index>(&nd - nodes_.data()));
+    });
+    out.begin.push_back(0);
+    for(std::size_t l = 0, w = 0; l < out.leaves.size(); ++l)
+    {
+      w += weight(nodes_[out.leaves[l].second]);
+      if(w >= group_weight || l + 1 == out.leaves.size())
+      {
+        out.begin.push_back(l + 1);
+        w = 0;
+      }
+    }
+    return out;
   }
 
   // what the self-join reuses from one leaf to the next
