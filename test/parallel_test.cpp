@@ -8,6 +8,8 @@
 // sequential one and the tests compare the sequential code with itself.
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/Octree.h>
+#include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/IO/STL.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/loop_subdivision.h>
@@ -31,6 +33,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -511,6 +514,264 @@ TEST(ParallelIndexTriangles, EmptyAndTinySoups)
   expect_same_index(Soup());
   expect_same_index(Soup(1, std::array<Point, 3>{Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)}));
   expect_same_index(Soup(1, std::array<Point, 3>{Point(0, 0, 0), Point(0, 0, 0), Point(0, 1, 0)}));
+}
+
+// --- the gap analysis, and the octree's concurrent searches ---------------------------------------
+
+std::uint64_t bits(double x)
+{
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+
+std::vector<std::uint64_t> bits(const std::vector<double>& values)
+{
+  std::vector<std::uint64_t> result(values.size());
+  if(!values.empty()) std::memcpy(result.data(), values.data(), values.size() * sizeof(double));
+  return result;
+}
+
+auto fields(const ST::Size_distribution& d) { return std::make_tuple(d.count, d.minimum, d.median, d.maximum); }
+
+std::vector<std::tuple<double, double, std::size_t>> bins(const std::vector<ST::Gap_histogram_bin>& h)
+{
+  std::vector<std::tuple<double, double, std::size_t>> result;
+  for(const ST::Gap_histogram_bin& b : h) result.emplace_back(b.lower, b.upper, b.count);
+  return result;
+}
+
+void expect_same_analysis(const ST::Gap_analysis& a, const ST::Gap_analysis& e)
+{
+  EXPECT_EQ(std::make_tuple(a.vertices, a.triangles, a.border_edges, a.border_vertices, a.degenerate_triangles,
+                            a.gaps_beyond_search_radius, a.zero_gaps, a.verdict, a.closed_gaps),
+            std::make_tuple(e.vertices, e.triangles, e.border_edges, e.border_vertices, e.degenerate_triangles,
+                            e.gaps_beyond_search_radius, e.zero_gaps, e.verdict, e.closed_gaps));
+  EXPECT_EQ(bits(std::vector<double>{a.bounding_box_diagonal, a.search_radius, a.feature_bound, a.suggested_tolerance,
+                                     a.largest_closed_gap, a.smallest_open_gap, a.closing_margin, a.keeping_margin}),
+            bits(std::vector<double>{e.bounding_box_diagonal, e.search_radius, e.feature_bound, e.suggested_tolerance,
+                                     e.largest_closed_gap, e.smallest_open_gap, e.closing_margin, e.keeping_margin}));
+  EXPECT_EQ(bits(a.gaps), bits(e.gaps));
+  EXPECT_EQ(bins(a.gap_histogram), bins(e.gap_histogram));
+  EXPECT_EQ(bins(a.feature_histogram), bins(e.feature_histogram));
+  EXPECT_EQ(fields(a.shortest_edges), fields(e.shortest_edges));
+  EXPECT_EQ(fields(a.smallest_heights), fields(e.smallest_heights));
+  EXPECT_EQ(fields(a.border_features), fields(e.border_features));
+  EXPECT_EQ(a.reasoning, e.reasoning);
+}
+
+/// the nearest border element of every border vertex, as (distance bits, vertex, triangle, index).
+std::vector<std::tuple<std::uint64_t, std::size_t, std::size_t, int>>
+nearest_elements(const std::vector<ST::internal::Nearest_border_element>& nearest)
+{
+  std::vector<std::tuple<std::uint64_t, std::size_t, std::size_t, int>> result;
+  for(const ST::internal::Nearest_border_element& e : nearest)
+    result.emplace_back(bits(e.distance), e.vertex, std::size_t(e.edge.triangle), e.edge.index);
+  return result;
+}
+
+/// every corner of `m` its own point, moved by up to `jitter` times the diagonal (0: not moved,
+/// the exact weld then merges the copies back).
+Mesh_data jittered_exploded(const Mesh_data& m, double jitter, unsigned seed)
+{
+  Mesh_data out;
+  std::mt19937 rng(seed);
+  const double j = jitter * diagonal(m.points);
+  std::uniform_real_distribution<double> move(-j, j);
+  for(const Triangle& t : m.triangles) {
+    for(std::size_t k = 0; k < 3; ++k) {
+      const Point& p = m.points[t[k]];
+      out.points.emplace_back(p.x() + move(rng), p.y() + move(rng), p.z() + move(rng));
+    }
+    out.triangles.push_back({out.points.size() - 3, out.points.size() - 2, out.points.size() - 1});
+  }
+  return out;
+}
+
+class ParallelGapAnalysisOfMesh : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ParallelGapAnalysisOfMesh, RealMeshAndItsJitteredExplodedSoup)
+{
+  const Mesh_data m = load(GetParam());
+  for(const double jitter : {0.0, 1e-6}) {
+    SCOPED_TRACE("jitter " + std::to_string(jitter));
+    Mesh_data soup = jitter == 0 ? m : jittered_exploded(m, jitter, 19);
+    shuffle_triangles(soup.triangles, 23);
+    const ST::Gap_analysis expected = ST::analyze_gaps(soup.points, soup.triangles);
+    for_each_thread_count([&](int) { expect_same_analysis(ST::analyze_gaps<Parallel>(soup.points, soup.triangles), expected); });
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ParallelGapAnalysisOfMesh, ::testing::ValuesIn(real_meshes));
+
+// An exploded grid whose copies lie at heights that are multiples of 2^-10 (exact in double): a
+// border vertex is at exactly the same distance from several copies and several border edges,
+// and the answer is decided by the tie-breaks (smaller vertex index, vertex before edge, earlier
+// edge), which must not depend on which thread offers which candidate first.
+TEST(ParallelGapAnalysis, TiesAreBrokenAsSequentially)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const int n = 64;
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j)
+      for(int half = 0; half < 2; ++half) {
+        const std::size_t t = triangles.size();
+        const double z = double(t % 3) * 0x1.0p-10;
+        const std::array<std::array<int, 2>, 3> corners =
+          half == 0 ? std::array<std::array<int, 2>, 3>{{{i, j}, {i + 1, j}, {i + 1, j + 1}}}
+                    : std::array<std::array<int, 2>, 3>{{{i, j}, {i + 1, j + 1}, {i, j + 1}}};
+        for(const auto& c : corners) points.emplace_back(double(c[0]), double(c[1]), z);
+        triangles.push_back({points.size() - 3, points.size() - 2, points.size() - 1});
+      }
+  // The exact weld of the analysis merges the copies at one height: index them as it does.
+  std::vector<Point> welded;
+  std::vector<Triangle> indexed;
+  ST::index_triangles(soup_test::explode(points, triangles), welded, indexed);
+  const ST::Adjacency_tables tables(indexed, welded.size());
+  const std::vector<std::size_t> border = ST::internal::border_vertices(tables);
+  ASSERT_GT(border.size(), 10000u);
+  const auto expected = nearest_elements(ST::internal::nearest_border_elements(welded, tables, border, 2.0, Epick()));
+  std::size_t ties = 0;
+  for(const auto& e : expected) ties += std::get<0>(e) == bits(0x1.0p-10);
+  EXPECT_GT(ties, border.size() / 2);
+  for_each_thread_count([&](int) {
+    EXPECT_EQ(nearest_elements(ST::internal::nearest_border_elements<Parallel>(welded, tables, border, 2.0, Epick())),
+              expected);
+    expect_same_analysis(ST::analyze_gaps<Parallel>(points, triangles), ST::analyze_gaps(points, triangles));
+  });
+}
+
+// A border vertex exactly between two border edges, nearer to both than to any vertex: the
+// answer is the edge of the earlier triangle. The edge of the later triangle is met first in
+// Morton order (its first end has the smaller address), so an answer kept by arrival order would
+// be the later edge. The pattern is repeated over a grid, in many blocks of the searches.
+TEST(ParallelGapAnalysis, EqualEdgesAreBrokenByTheirOrder)
+{
+  const double h = 0x1.0p-10;
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const auto add = [&](const Point& a, const Point& b, const Point& c) {
+    points.push_back(a);
+    points.push_back(b);
+    points.push_back(c);
+    triangles.push_back({points.size() - 3, points.size() - 2, points.size() - 1});
+  };
+  const int n = 40;
+  for(int i = 0; i < n; ++i)
+    for(int j = 0; j < n; ++j) {
+      const double x = 10.0 * i, y = 10.0 * j;
+      add(Point(x + 2, y, h), Point(x - 2, y, h), Point(x, y, 1));       // border edge 0 above v
+      add(Point(x - 2, y, -h), Point(x + 2, y, -h), Point(x, y, -1));    // border edge 0 below v
+      add(Point(x, y, 0), Point(x, y - 3, 0), Point(x + 1, y - 3, 0));   // v = (x, y, 0)
+    }
+  const ST::Adjacency_tables tables(triangles, points.size());
+  const std::vector<std::size_t> border = ST::internal::border_vertices(tables);
+  ASSERT_EQ(border.size(), points.size());
+  const auto sequential = ST::internal::nearest_border_elements(points, tables, border, 0.5, Epick());
+  for(std::size_t p = 0; p < triangles.size(); p += 3) {
+    const ST::internal::Nearest_border_element& e = sequential[triangles[p + 2][0]];
+    EXPECT_EQ(std::make_tuple(e.distance, e.vertex, std::size_t(e.edge.triangle), e.edge.index),
+              std::make_tuple(h, static_cast<std::size_t>(-1), p, 0));
+  }
+  for_each_thread_count([&](int) {
+    EXPECT_EQ(nearest_elements(ST::internal::nearest_border_elements<Parallel>(points, tables, border, 0.5, Epick())),
+              nearest_elements(sequential));
+  });
+}
+
+TEST(ParallelGapAnalysis, SortSizesIsStdSort)
+{
+  std::mt19937_64 rng(3);
+  for(const std::size_t n : {std::size_t(10), std::size_t(70000), std::size_t(300000)}) {
+    std::vector<double> sizes(n);
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t r = rng();
+      // repeated values, zeros, tiny and huge magnitudes
+      sizes[i] = r % 7 == 0 ? 0.0 : r % 5 == 0 ? 1.5 : std::ldexp(double(r >> 40), int(r % 200) - 100);
+    }
+    std::vector<double> expected = sizes;
+    std::sort(expected.begin(), expected.end());
+    for_each_thread_count([&](int) {
+      std::vector<double> sorted = sizes;
+      ST::internal::sort_sizes<Parallel>(sorted);
+      EXPECT_EQ(bits(sorted), bits(expected));
+    });
+    // a negative zero or a negative value: the comparison sort, whose result is kept
+    sizes[n / 2] = -0.0;
+    sizes[n / 3] = -2.0;
+    expected = sizes;
+    std::sort(expected.begin(), expected.end());
+    std::vector<double> sorted = sizes;
+    ST::internal::sort_sizes<Parallel>(sorted);
+    EXPECT_EQ(bits(sorted), bits(expected));
+  }
+}
+
+#if !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)
+// The candidates are counted by all the threads together: a border too crowded to analyse is
+// refused as sequentially (the soup of GapAnalysis.CrowdedBordersStopAtTheCandidateBudget).
+TEST(ParallelGapAnalysis, CrowdedBordersAreRefusedOnAnyNumberOfThreads)
+{
+  std::mt19937_64 random(7);
+  auto coordinate = [&random] { return double(random() >> 11) * 0x1.0p-53; };
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t t = 0; t < 20000; ++t) {
+    const double c[3] = {coordinate(), coordinate(), coordinate()};
+    for(std::size_t k = 0; k < 3; ++k)
+      points.emplace_back(c[0] + 0.6 * (coordinate() - 0.5), c[1] + 0.6 * (coordinate() - 0.5),
+                          c[2] + 0.6 * (coordinate() - 0.5));
+    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  std::string expected;
+  try {
+    ST::analyze_gaps(points, triangles);
+  } catch(const ST::Invalid_input& e) {
+    expected = e.what();
+  }
+  ASSERT_NE(expected.find("too crowded"), std::string::npos) << expected;
+  try {
+    ST::analyze_gaps<Parallel>(points, triangles);
+    ADD_FAILURE() << "not refused";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_EQ(std::string(e.what()), expected);
+  }
+}
+#endif
+
+// The concurrent searches of the octree hand over the answers of the sequential ones: each
+// point's neighbourhood, each segment's, exactly once.
+TEST(ParallelOctree, ConcurrentSearchesGiveTheSequentialAnswers)
+{
+  const Mesh_data m = load("clean/elephant.off");
+  const Mesh_data soup = jittered_exploded(m, 1e-5, 29);
+  const double r = 1e-3 * diagonal(soup.points);
+  const ST::Octree<Epick> tree(soup.points);
+  std::vector<std::vector<std::size_t>> expected(soup.points.size());
+  tree.for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) { expected[k] = near; });
+  std::vector<std::array<std::size_t, 2>> segments;
+  for(const Triangle& t : soup.triangles) segments.push_back({t[0], t[1]});
+  segments.push_back({0, 0}); // a segment of one point: a radius query
+  std::vector<std::vector<std::size_t>> expected_segments(segments.size());
+  tree.for_each_segment_neighborhood(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
+    expected_segments[s] = near;
+  });
+  for_each_thread_count([&](int) {
+    std::vector<std::vector<std::size_t>> found(soup.points.size());
+    std::vector<std::atomic<int>> calls(soup.points.size());
+    tree.for_each_neighborhood_concurrently<Parallel>(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+      ++calls[k];
+      found[k] = near;
+    });
+    EXPECT_EQ(found, expected);
+    EXPECT_TRUE(std::all_of(calls.begin(), calls.end(), [](const std::atomic<int>& c) { return c == 1; }));
+    std::vector<std::vector<std::size_t>> found_segments(segments.size());
+    tree.for_each_segment_neighborhood_concurrently<Parallel>(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
+      found_segments[s] = near;
+    });
+    EXPECT_EQ(found_segments, expected_segments);
+  });
 }
 
 } // namespace

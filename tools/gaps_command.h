@@ -154,8 +154,10 @@ inline std::string gap_analysis_text(const std::string& file, const Soup_topolog
   return out;
 }
 
-/// `soup_topology gaps FILE [--json]`: prints the analysis; returns the exit code.
-inline int run_gaps(const std::vector<std::string>& args)
+/// `soup_topology gaps FILE [--json]`: prints the analysis (on TBB's threads with
+/// `ConcurrencyTag` = `CGAL::Parallel_tag`: the same output); returns the exit code.
+template <class ConcurrencyTag>
+int run_gaps(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
@@ -171,7 +173,8 @@ inline int run_gaps(const std::vector<std::string>& args)
   Soup_topology::IO::read_triangle_soup(file, points, triangles);
   // The soup as read is exactly welded already: the analysis does not weld a copy of it.
   const Soup_topology::Gap_analysis a =
-    Soup_topology::internal::analyze_exactly_welded_gaps(points, triangles, CGAL::Exact_predicates_inexact_constructions_kernel());
+    Soup_topology::internal::analyze_exactly_welded_gaps<ConcurrencyTag>(points, triangles,
+                                                                         CGAL::Exact_predicates_inexact_constructions_kernel());
   std::cout << (json ? gap_analysis_json(file, a) + "\n" : gap_analysis_text(file, a));
   std::cout.flush();
   if(!std::cout) throw std::runtime_error("cannot write to standard output");

@@ -3,7 +3,7 @@
 //
 // soup_topology: the command-line face of the library.
 //   soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]
-//   soup_topology gaps FILE [--json]
+//   soup_topology gaps FILE [--json] [--threads N]
 //   soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]
 //                        [--json] [--check] [--no-t-junctions] [--self-intersections]
 //                        [--orientation P] [--small-features collapse|refuse] [--html REPORT.html]
@@ -81,7 +81,7 @@ const char* usage_text =
   "  soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
   "      builds the adjacency tables and prints what it found.\n"
-  "  soup_topology gaps FILE [--json]\n"
+  "  soup_topology gaps FILE [--json] [--threads N]\n"
   "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
   "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
@@ -111,7 +111,7 @@ const char* usage_text =
   "      over their targets (keeping an existing file's permissions); on an error or a signal\n"
   "      nothing is replaced and no temporary file is left. OUT and the report must differ\n"
   "      from IN and from each other.\n"
-  "  --threads N (stats, repair): use at most N threads (default: all cores; the result is the\n"
+  "  --threads N (stats, gaps, repair): use at most N threads (default: all cores; the result is the\n"
   "      same for every N).\n"
 "exit codes: 0 success, 1 --check failed, 2 bad input or arguments, or an output that cannot be written\n";
 
@@ -573,6 +573,21 @@ int run_repair(const std::vector<std::string>& args)
   return o.check && failed ? 1 : 0;
 }
 
+// `gaps`: the options of the analysis are read by tool::run_gaps(), `--threads N` here.
+int run_gaps(std::vector<std::string> args)
+{
+  std::size_t threads = 0;
+  for(std::size_t i = 0; i < args.size(); ++i)
+    if(args[i] == "--threads") {
+      if(i + 1 >= args.size()) throw Usage_error("gaps: --threads needs a value");
+      threads = parse_threads("gaps", args[i + 1]);
+      args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i + 2));
+      --i;
+    }
+  const Thread_limit limit(threads);
+  return tool::run_gaps<Concurrency>(args);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -587,7 +602,7 @@ int main(int argc, char** argv)
   try {
     if(command == "stats") return run_stats(args);
     if(command == "repair") return run_repair(args);
-    if(command == "gaps") return tool::run_gaps(args);
+    if(command == "gaps") return run_gaps(args);
     throw Usage_error("unknown command '" + command + "'");
   } catch(const Usage_error& e) {
     std::cerr << "soup_topology: " << e.what() << "\n" << usage_text;

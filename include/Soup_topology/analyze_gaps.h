@@ -16,12 +16,15 @@
 #include <Soup_topology/internal/tolerance.h>
 
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -154,6 +157,30 @@ inline std::string format_length(double x)
   return buffer;
 }
 
+/// sorts sizes in increasing order, as `std::sort` does. Large vectors of sizes that are all
+/// non-negative (sign bit clear, no NaN) are sorted by their bit patterns, which then compare as
+/// the values do, with a least-significant-digit radix sort of 16 bits a pass.
+template <class ConcurrencyTag>
+void sort_sizes(std::vector<double>& sizes)
+{
+  if(sizes.size() < (std::size_t(1) << 16) ||
+     !std::all_of(sizes.begin(), sizes.end(), [](double x) { return !std::signbit(x) && !std::isnan(x); })) {
+    std::sort(sizes.begin(), sizes.end());
+    return;
+  }
+  std::vector<std::uint64_t> keys(sizes.size()), buffer(sizes.size());
+  for_each_index<ConcurrencyTag>(sizes.size(), [&](std::size_t i) { std::memcpy(&keys[i], &sizes[i], sizeof(double)); });
+  for(unsigned shift = 0; shift < 64; shift += 16) {
+    std::vector<std::size_t> count((std::size_t(1) << 16) + 1, 0);
+    for(std::uint64_t k : keys) ++count[((k >> shift) & 0xffff) + 1];
+    if(count[1 + ((keys[0] >> shift) & 0xffff)] == keys.size()) continue; // one digit value: nothing moves
+    for(std::size_t d = 1; d < count.size(); ++d) count[d] += count[d - 1];
+    for(std::uint64_t k : keys) buffer[count[(k >> shift) & 0xffff]++] = k;
+    keys.swap(buffer);
+  }
+  for_each_index<ConcurrencyTag>(sizes.size(), [&](std::size_t i) { std::memcpy(&sizes[i], &keys[i], sizeof(double)); });
+}
+
 /// fills the suggestion of `a` from its gaps and its feature bound.
 inline void suggest_tolerance(Gap_analysis& a)
 {
@@ -280,32 +307,54 @@ void add_border_features(const Point& p, const Point& q, const Point& r, Adjacen
 
 /// the feature sizes of the soup into `a`: shortest edges and smallest heights of the
 /// non-degenerate triangles, the border features, and the bound a tolerance must stay below.
-template <class Geom_traits, class TriangleRange>
+/// The triangles are measured by blocks (in parallel with `CGAL::Parallel_tag`), each into buffers
+/// of its own, put together in the order of the blocks: the sizes come in the order of the
+/// triangles, as measured one by one.
+template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
 void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
                            const Adjacency_tables& tables, const Geom_traits& gt, Gap_analysis& a)
 {
   using Point = typename Geom_traits::Point_3;
-  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+  struct Sizes
+  {
+    std::vector<double> shortest, heights, smallest, border_features;
+    std::size_t degenerate = 0;
+  };
+  std::vector<Sizes> blocks(number_of_blocks(tris.size()));
+  for_each_block<ConcurrencyTag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
+    typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+    Sizes& out = blocks[g];
+    out.shortest.reserve(end - begin);
+    out.heights.reserve(end - begin);
+    out.smallest.reserve(end - begin);
+    for(std::size_t t = begin; t < end; ++t) {
+      const Point& p = pts[static_cast<std::size_t>(tris[t][0])];
+      const Point& q = pts[static_cast<std::size_t>(tris[t][1])];
+      const Point& r = pts[static_cast<std::size_t>(tris[t][2])];
+      if(collinear(p, q, r)) { ++out.degenerate; continue; }
+      const Triangle_feature_sizes s = triangle_feature_sizes(p, q, r);
+      out.shortest.push_back(s.shortest_edge);
+      out.heights.push_back(s.smallest_height);
+      out.smallest.push_back(std::min(s.shortest_edge, s.smallest_height));
+      const auto tt = static_cast<Adjacency_tables::size_type>(t);
+      if(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))
+        add_border_features(p, q, r, tt, tables, out.border_features);
+    }
+  });
   std::vector<double> shortest, heights, smallest, border_features;
-  shortest.reserve(tris.size());
-  heights.reserve(tris.size());
-  smallest.reserve(tris.size());
-  for(std::size_t t = 0; t < tris.size(); ++t) {
-    const Point& p = pts[static_cast<std::size_t>(tris[t][0])];
-    const Point& q = pts[static_cast<std::size_t>(tris[t][1])];
-    const Point& r = pts[static_cast<std::size_t>(tris[t][2])];
-    if(collinear(p, q, r)) { ++a.degenerate_triangles; continue; }
-    const Triangle_feature_sizes s = triangle_feature_sizes(p, q, r);
-    shortest.push_back(s.shortest_edge);
-    heights.push_back(s.smallest_height);
-    smallest.push_back(std::min(s.shortest_edge, s.smallest_height));
-    const auto tt = static_cast<Adjacency_tables::size_type>(t);
-    if(tables.is_border_edge(tt, 0) || tables.is_border_edge(tt, 1) || tables.is_border_edge(tt, 2))
-      add_border_features(p, q, r, tt, tables, border_features);
-  }
+  const auto gather = [&](std::vector<double> Sizes::*member, std::vector<double>& to) {
+    std::vector<std::vector<double>> parts(blocks.size());
+    for(std::size_t g = 0; g < blocks.size(); ++g) parts[g].swap(blocks[g].*member);
+    concatenate_in_block_order(parts, to);
+  };
+  gather(&Sizes::shortest, shortest);
+  gather(&Sizes::heights, heights);
+  gather(&Sizes::smallest, smallest);
+  gather(&Sizes::border_features, border_features);
+  for(const Sizes& b : blocks) a.degenerate_triangles += b.degenerate;
   a.shortest_edges = size_distribution(shortest);
   a.smallest_heights = size_distribution(heights);
-  std::sort(smallest.begin(), smallest.end());
+  sort_sizes<ConcurrencyTag>(smallest);
   a.feature_histogram = log_histogram<Gap_histogram_bin>(smallest);
   a.border_features = size_distribution(border_features);
   a.feature_bound = border_features.empty() ? std::numeric_limits<double>::infinity() : a.border_features.minimum / 3;
@@ -314,28 +363,34 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// the gaps of the border vertices `border` into `a`, measured up to the median border edge
 /// length (at least the smallest border feature, so that every gap below the bound and the first
 /// one above it are measured when they exist).
-template <class Geom_traits, class TriangleRange>
+template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
 void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
                   const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
                   Gap_analysis& a)
 {
+  std::vector<std::vector<double>> lengths(number_of_blocks(tris.size()));
+  for_each_block<ConcurrencyTag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
+    typename Geom_traits::Compute_squared_distance_3 squared_distance = gt.compute_squared_distance_3_object();
+    for(std::size_t t = begin; t < end; ++t)
+      for(int i = 0; i < 3; ++i)
+        if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
+          lengths[g].push_back(std::sqrt(CGAL::to_double(squared_distance(
+            pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>(i)])],
+            pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>((i + 1) % 3)])]))));
+  });
   std::vector<double> border_lengths;
-  for(std::size_t t = 0; t < tris.size(); ++t)
-    for(int i = 0; i < 3; ++i)
-      if(tables.is_border_edge(static_cast<Adjacency_tables::size_type>(t), i))
-        border_lengths.push_back(std::sqrt(CGAL::to_double(gt.compute_squared_distance_3_object()(
-          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>(i)])],
-          pts[static_cast<std::size_t>(tris[t][static_cast<std::size_t>((i + 1) % 3)])]))));
+  concatenate_in_block_order(lengths, border_lengths);
   std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
                    border_lengths.end());
   a.search_radius = border_lengths[border_lengths.size() / 2];
   if(a.border_features.count > 0) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
-  const std::vector<Nearest_border_element> nearest = nearest_border_elements(pts, tables, border, a.search_radius, gt);
+  const std::vector<Nearest_border_element> nearest =
+    nearest_border_elements<ConcurrencyTag>(pts, tables, border, a.search_radius, gt);
   for(const Nearest_border_element& e : nearest) {
     if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
     else ++a.gaps_beyond_search_radius;
   }
-  std::sort(a.gaps.begin(), a.gaps.end());
+  sort_sizes<ConcurrencyTag>(a.gaps);
   a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
   a.gap_histogram = log_histogram<Gap_histogram_bin>(a.gaps);
 }
@@ -361,7 +416,7 @@ double used_points_diagonal(const std::vector<Point>& pts, const TriangleRange& 
 /// `pts` are equal and every triangle of `tris` (3 indices into `pts`) has three distinct
 /// corners. Trusted, not checked; points no triangle uses are allowed and ignored. The soup is
 /// neither copied nor welded again: the answer is that of `analyze_gaps()` on the same soup.
-template <class Geom_traits, class TriangleRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Geom_traits, class TriangleRange>
 Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
                                          const TriangleRange& tris, const Geom_traits& gt)
 {
@@ -372,8 +427,8 @@ Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits:
   a.bounding_box_diagonal = used_points_diagonal(pts, tris, a.vertices);
   const std::vector<std::size_t> border = border_vertices(tables);
   a.border_vertices = border.size();
-  measure_feature_sizes(pts, tris, tables, gt, a);
-  if(!border.empty()) measure_gaps(pts, tris, tables, border, gt, a);
+  measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, a);
+  if(!border.empty()) measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, a);
   suggest_tolerance(a);
   return a;
 }
@@ -404,6 +459,12 @@ Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits:
 /// A decision of the weld at the suggested tolerance could differ from the analysis only for a gap
 /// within a rounding error of the tolerance, and the tolerance is a factor sqrt(2) away from every gap.
 ///
+/// **Threads.** With `CGAL::Parallel_tag` the searches of the nearest border elements and the
+/// feature sizes run on TBB's threads (coordinates stored as `double`); the result is the same,
+/// to the bit, as with `CGAL::Sequential_tag`, on any number of threads.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default), `CGAL::Parallel_tag` (needs TBB) or
+///         `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a range of triangles (3 indices each)
 /// \param points the points of the soup
@@ -424,7 +485,8 @@ Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits:
 ///         crowded within the search radius that more than 2^24 + 256 per border vertex
 ///         candidate pairs would have to be examined (the work stays bounded; give the
 ///         tolerance by hand then).
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangles,
                           const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -436,7 +498,7 @@ Gap_analysis analyze_gaps(const PointRange& points, const TriangleRange& triangl
   std::vector<Point> pts;
   std::vector<std::array<std::size_t, 3>> tris;
   internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
-  return internal::analyze_exactly_welded_gaps(pts, tris, gt);
+  return internal::analyze_exactly_welded_gaps<ConcurrencyTag>(pts, tris, gt);
 }
 
 /// \ingroup PkgSoupTopologyGaps
@@ -604,10 +666,10 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   // The gaps, as analyze_gaps() measures them, with their nearest elements.
   Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
-  internal::measure_feature_sizes(pts, tris, tables, gt, global);
+  internal::measure_feature_sizes<CGAL::Sequential_tag>(pts, tris, tables, gt, global);
   std::vector<internal::Nearest_border_element> nearest;
   if(!border.empty()) {
-    internal::measure_gaps(pts, tris, tables, border, gt, global);
+    internal::measure_gaps<CGAL::Sequential_tag>(pts, tris, tables, border, gt, global);
     nearest = internal::nearest_border_elements(pts, tables, border, global.search_radius, gt);
   }
   // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so

@@ -11,16 +11,20 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Octree.h>
+#include <Soup_topology/internal/parallel.h>
 
 #include <CGAL/number_utils.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -113,24 +117,71 @@ public:
   /// border vertices, points of the tree: each query starts next to its edge). With
   /// `Candidates::COUNT_FIRST` the candidates are counted (and the budget checked) before any is
   /// listed in order or examined.
+  ///
+  /// With `CGAL::Parallel_tag` both searches run on TBB's threads and the candidates are offered
+  /// as they are found, in no particular order. The answer does not depend on that order: it is
+  /// the least candidate in the order (distance, vertex before edge, index of the vertex or
+  /// order of the edge), which is what the sequential offers keep. A vertex's answer is written
+  /// by the thread of its self-join query alone; an edge's offers, which reach many vertices, are
+  /// kept only when nearer than the vertex's answer of the self-join (no edge as near replaces a
+  /// vertex) and written under one of a set of locks chosen by the vertex. The candidates
+  /// examined are counted by an atomic counter: the budget is exceeded for the same total.
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   void search_all(double radius, Candidates candidates)
   {
     const FT r(radius);
     if(border_edges_.empty()) list_border_edges();
     const bool count_while_searching = candidates == Candidates::COUNT_WHILE_SEARCHING;
     if(!count_while_searching) {
-      for(const Point& p : border_points_) count_examined(tree_->number_of_vertices_near_point(p, r));
-      for(const std::array<std::size_t, 2>& e : border_edge_ends_)
-        count_examined(tree_->number_of_vertices_near_segment(border_points_[e[0]], border_points_[e[1]], r));
+      // Counted by blocks (in parallel with `Parallel_tag`), then checked: the budget is
+      // exceeded for the same total as when counted one by one.
+      const std::size_t n = border_points_.size(), m = border_edge_ends_.size();
+      std::vector<std::size_t> counts(number_of_blocks(n + m), 0);
+      for_each_block<ConcurrencyTag>(n + m, default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i < end; ++i)
+          counts[g] += i < n ? tree_->number_of_vertices_near_point(border_points_[i], r)
+                             : tree_->number_of_vertices_near_segment(border_points_[border_edge_ends_[i - n][0]],
+                                                                      border_points_[border_edge_ends_[i - n][1]], r);
+      });
+      std::size_t total = 0;
+      for(std::size_t c : counts) total += c;
+      count_examined(total);
     }
-    tree_->for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
-      if(count_while_searching) count_examined(near.size());
-      for(std::size_t j : near) offer_vertex(k, j);
-    });
-    tree_->for_each_segment_neighborhood(border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
-      if(count_while_searching) count_examined(near.size());
-      offer_edge(border_edges_[e], near, [](std::size_t m) { return m; });
-    });
+    if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+      std::atomic<std::size_t> examined(examined_);
+      const auto count = [&](std::size_t n) {
+        if(count_while_searching)
+          check_gap_candidate_budget(examined.fetch_add(n, std::memory_order_relaxed) + n, border_.size());
+      };
+      tree_->template for_each_neighborhood_concurrently<ConcurrencyTag>(
+        r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+          count(near.size());
+          for(std::size_t j : near) offer_vertex(k, j);
+        });
+      std::vector<double> vertex_distance(nearest_.size());
+      for(std::size_t k = 0; k < nearest_.size(); ++k) vertex_distance[k] = nearest_[k].distance;
+      std::array<std::mutex, 256> locks;
+      tree_->template for_each_segment_neighborhood_concurrently<ConcurrencyTag>(
+        border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
+          count(near.size());
+          for_each_edge_distance(border_edges_[e], near, [](std::size_t m) { return m; },
+                                 [&](std::size_t k, double d) {
+                                   if(!(d < vertex_distance[k])) return;
+                                   const std::lock_guard<std::mutex> hold(locks[k % locks.size()]);
+                                   offer_edge_at(k, d, border_edges_[e]);
+                                 });
+        });
+      examined_ = examined.load();
+    } else {
+      tree_->for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+        if(count_while_searching) count_examined(near.size());
+        for(std::size_t j : near) offer_vertex(k, j);
+      });
+      tree_->for_each_segment_neighborhood(border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
+        if(count_while_searching) count_examined(near.size());
+        offer_edge(border_edges_[e], near, [](std::size_t m) { return m; });
+      });
+    }
   }
 
   /// the nearest element within `radius` of the border vertices `subset` (indices into
@@ -208,6 +259,15 @@ private:
   template <class To_border>
   void offer_edge(const Adjacency_tables::Edge& edge, const std::vector<std::size_t>& near, const To_border& to_border)
   {
+    for_each_edge_distance(edge, near, to_border, [&](std::size_t k, double d) { offer_edge_at(k, d, edge); });
+  }
+
+  // `offer(k, d)` for every vertex of `near` that is not a corner of the (only) triangle of the
+  // border edge `edge`, `k` its index into `border`, `d` its distance to the edge.
+  template <class To_border, class Offer>
+  void for_each_edge_distance(const Adjacency_tables::Edge& edge, const std::vector<std::size_t>& near,
+                              const To_border& to_border, const Offer& offer) const
+  {
     if(near.empty()) return;
     const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
     const Point& a = points_[tr[static_cast<std::size_t>(edge.index)]];
@@ -217,14 +277,18 @@ private:
       const std::size_t k = to_border(m);
       const std::size_t v = border_[k];
       if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
-      const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s)));
-      Nearest_border_element& best = nearest_[k];
-      if(d < best.distance ||
-         (d == best.distance && best.vertex == static_cast<std::size_t>(-1) && edge < best.edge)) {
-        best.distance = d;
-        best.vertex = static_cast<std::size_t>(-1);
-        best.edge = edge;
-      }
+      offer(k, std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s))));
+    }
+  }
+
+  // The edge `edge` at distance `d` of border vertex `k`, by the rule above.
+  void offer_edge_at(std::size_t k, double d, const Adjacency_tables::Edge& edge)
+  {
+    Nearest_border_element& best = nearest_[k];
+    if(d < best.distance || (d == best.distance && best.vertex == static_cast<std::size_t>(-1) && edge < best.edge)) {
+      best.distance = d;
+      best.vertex = static_cast<std::size_t>(-1);
+      best.edge = edge;
     }
   }
 
@@ -280,7 +344,7 @@ constexpr double first_gap_pass_fraction = 1.0 / 32;
 /// its candidates before it sorts or examines any: where it would exceed the budget, the refusal
 /// costs the count only. Whether the budget is exceeded depends on the total only, not on the
 /// order of the counts.
-template <class Geom_traits>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Geom_traits>
 std::vector<Nearest_border_element> nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
                                                             const Adjacency_tables& tables,
                                                             const std::vector<std::size_t>& border,
@@ -289,7 +353,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   if(border.empty()) return {};
   Nearest_border_search<Geom_traits> search(points, tables, border, gt);
   const double first_radius = radius * first_gap_pass_fraction;
-  search.search_all(first_radius, Candidates::COUNT_WHILE_SEARCHING);
+  search.template search_all<ConcurrencyTag>(first_radius, Candidates::COUNT_WHILE_SEARCHING);
   // Relative rounding of a distance evaluated in double is a few units in the last place.
   const double decided_below = first_radius * (1 - 1e-9);
   std::vector<std::size_t> undecided;
@@ -297,7 +361,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
     if(!(search.nearest()[k].distance < decided_below)) undecided.push_back(k);
   if(2 * undecided.size() > border.size()) {
     search.nearest().assign(border.size(), Nearest_border_element());
-    search.search_all(radius, Candidates::COUNT_FIRST);
+    search.template search_all<ConcurrencyTag>(radius, Candidates::COUNT_FIRST);
   }
   else if(!undecided.empty())
     search.search_subset(undecided, radius);
