@@ -1162,4 +1162,34 @@ TEST_F(HostileInput, Issue21WrittenMeshDoesNotDependOnTheTriangleOrder)
   }
 }
 
+// --threads N on every command: the output is the same for any N (the pig, whose analysis and
+// repair exercise the parallel searches, the weld and the orientation), and a count that is not a
+// number from 1 to 4096 is refused.
+TEST_F(HostileInput, ThreadCountsGiveTheSameOutputAndBadCountsAreRefused)
+{
+  const std::string pig = soup_test::data_file("cgal_repair/pig.stl.xz");
+  std::vector<std::string> outputs;
+  for(const std::string threads : {"1", "2", "3"}) {
+    const soup_test::Bounded_run gaps = run({"gaps", pig, "--json", "--threads", threads});
+    ASSERT_EQ(gaps.exit_code, 0) << gaps.err;
+    const soup_test::Bounded_run stats = run({"stats", pig, "--json", "--threads", threads});
+    ASSERT_EQ(stats.exit_code, 0) << stats.err;
+    const std::string out = folder + "/pig" + threads + ".off";
+    const soup_test::Bounded_run repair = run({"repair", pig, "-o", out, "--tolerance", "0.3", "--json", "--threads", threads});
+    ASSERT_EQ(repair.exit_code, 0) << repair.err;
+    std::string report = repair.out;
+    report.erase(0, report.find("\"format\""));  // the file names differ
+    outputs.push_back(gaps.out + stats.out + report + read_whole(out));
+  }
+  EXPECT_NE(outputs[0].find("\"verdict\""), std::string::npos);
+  EXPECT_EQ(outputs[1], outputs[0]);
+  EXPECT_EQ(outputs[2], outputs[0]);
+  for(const std::string command : {"gaps", "stats"})
+    for(const std::string bad : {"0", "x", "-1", "5000"})
+      expect_refused_unchanged({command, input, "--threads", bad}, "--threads takes a number of threads from 1 to 4096");
+  expect_refused_unchanged({"gaps", input, "--threads"}, "gaps: --threads needs a value");
+  expect_refused_unchanged({"repair", input, "-o", output, "--threads", "0"},
+                           "--threads takes a number of threads from 1 to 4096");
+}
+
 } // namespace bad_input_test
