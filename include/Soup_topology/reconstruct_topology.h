@@ -679,6 +679,16 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     soup is unchanged: the caller gives a tolerance by hand. Not with `snapping_tolerance` or
 ///     `relative_tolerance`. `geom_traits` then also needs `Segment_3`, `Construct_segment_3` and
 ///     `Compute_squared_distance_3`.} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_tolerance_map} \cgalParamDescription{a tolerance per point instead of one:
+///     two vertices u and v are welded only when |uv| <= min(t_u, t_v), a vertex c is split into a
+///     border edge [a,b] only when its distance to it is <= min(t_c, t_a, t_b) (see `snap_vertices()`
+///     and `split_t_junctions()`); no point moves farther than its own tolerance. The map is read once,
+///     at the index of every element of `points`; exactly equal points take the smallest of their
+///     tolerances. `Reconstruction_report::tolerance` is then the largest tolerance of the map.
+///     `per_part_vertex_tolerances()` makes one from `analyze_gaps_per_part()`. Exclusive with
+///     `snapping_tolerance`, `relative_tolerance` and `automatic_tolerance`.} \cgalParamType{a
+///     `ReadablePropertyMap` from the index of a point (`std::size_t`) to a finite number >= 0
+///     convertible to `geom_traits::FT`} \cgalParamDefault{none: one tolerance} \cgalParamNEnd
 ///   \cgalParamNBegin{visitor} \cgalParamDescription{told every weld and every refused weld of every
 ///     round, with the indices of `points` (a point merged by the exact weld is known by the first
 ///     of the equal points). If it also has the member functions of `Default_split_visitor`, it is
@@ -702,7 +712,8 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// \cgalNamedParamsEnd
 /// \returns a `Reconstruction_report`.
 /// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
-///         in a face, a non-finite coordinate or an invalid tolerance, or when `automatic_tolerance(true)`
+///         in a face, a non-finite coordinate or an invalid tolerance (also in `vertex_tolerance_map`, or a
+///         map given with another tolerance parameter), or when `automatic_tolerance(true)`
 ///         finds no tolerance; `points` and `triangles` are unchanged then.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters,
@@ -780,10 +791,10 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
 ///     then written for the new vertices} \cgalParamType{a model of `ReadWritePropertyMap` from
 ///     `boost::graph_traits<PolygonMesh>::vertex_descriptor` to a point of a CGAL kernel}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, mesh)`} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, visitor,
+///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, vertex_tolerance_map, visitor,
 ///     maximum_number_of_rounds, do_split_t_junctions, small_features, count_self_intersections}
-///     \cgalParamDescription{as for the soup; the visitor's indices are those of the vertices in
-///     the order of `vertices(mesh)`} \cgalParamNEnd
+///     \cgalParamDescription{as for the soup; the visitor's indices and the keys of the tolerance map
+///     are those of the vertices in the order of `vertices(mesh)`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \returns a `Reconstruction_report`.
 /// \throws Invalid_input on a non-finite coordinate or an invalid tolerance; `mesh` is unchanged then.
