@@ -1200,6 +1200,17 @@ TEST(VertexToleranceMap, PipelineMovesNoPointBeyondItsToleranceWhateverTheOrder)
   }
   EXPECT_LE(r1.max_displacement, 2e-6 * diag);
 
+  // On TBB's threads: the same points, triangles and report.
+  {
+    auto pp = soup.points;
+    auto tp = soup.triangles;
+    const Reconstruction_report rp = ST::reconstruct_topology<CGAL::Parallel_if_available_tag>(
+      pp, tp, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t)));
+    EXPECT_EQ(pp, p1);
+    EXPECT_EQ(tp, t1);
+    issue13::expect_same_report(rp, r1);
+  }
+
   // Shuffled.
   std::vector<std::size_t> relabel(soup.points.size());
   std::iota(relabel.begin(), relabel.end(), 0);

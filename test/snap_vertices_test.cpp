@@ -1238,6 +1238,15 @@ TEST(VertexToleranceMap, DecisionsFollowThePairRuleWhateverTheOrder)
   // An edge closes where both pairs of its ends are within their tolerances.
   EXPECT_LT(r.border_edges_after, r.border_edges_before);
 
+  // On TBB's threads: the same triangles, visitor calls and report.
+  std::vector<Triangle> welded_in_parallel = triangles;
+  Weld_log parallel_log;
+  const ST::Snap_report rp = ST::snap_vertices<CGAL::Parallel_if_available_tag>(
+    points, welded_in_parallel, np.visitor(std::ref(parallel_log)));
+  EXPECT_EQ(welded_in_parallel, welded);
+  EXPECT_EQ(parallel_log.told, log.told);
+  expect_same_snap_report(rp, r);
+
   // A second run changes nothing.
   std::vector<Triangle> again = welded;
   EXPECT_EQ(ST::snap_vertices(points, again, np).merged_vertices, 0u);
