@@ -203,10 +203,24 @@ private:
     const FT& e = smaller_tolerance((*tolerances_)[u], (*tolerances_)[v]);
     return e * e;
   }
-  // With per-vertex tolerances: `true` if u and v are within the tolerance of the pair (exact).
+  // With per-vertex tolerances: `true` if u and v are within the tolerance of the pair. With
+  // double coordinates a squared distance far from the squared tolerance (computed in double,
+  // within a few ulps of the exact value) is decided without the exact predicate, as
+  // `count_short_edges()` does for one tolerance; otherwise `Compare_squared_distance_3` decides.
   bool within_pair_tolerance(size_type u, size_type v) const
   {
-    return kernel_.compare_squared_distance_3_object()(point(u), point(v), pair_eps2(u, v)) != CGAL::LARGER;
+    const FT e2 = pair_eps2(u, v);
+    const Point& p = point(u);
+    const Point& q = point(v);
+    if constexpr(std::is_same<FT, double>::value) {
+      const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      if(d2 > 1e-250 && e2 > 1e-250) {
+        if(d2 < e2 * (1 - 1e-12)) return true;
+        if(d2 > e2 * (1 + 1e-12)) return false;
+      }
+    }
+    return kernel_.compare_squared_distance_3_object()(p, q, e2) != CGAL::LARGER;
   }
   // The largest distance a corner of the triangle `tr` can move (in double): the tolerance, or
   // with per-vertex tolerances the largest of its corners' (a vertex moves by at most its own).
