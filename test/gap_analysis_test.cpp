@@ -320,6 +320,71 @@ TEST(GapAnalysis, PartsOfDifferentScalesGetTheirOwnTolerances)
   }
 }
 
+// The analysis per part turned into a tolerance per point (`per_part_vertex_tolerances()`) for
+// the pipeline's `vertex_tolerance_map`: on the two parts above, the one tolerance of
+// `analyze_gaps()` closes the small seam only, the map closes both, and no point moves farther
+// than its own tolerance (a weld of u and v needs |uv| <= min(t_u, t_v)).
+TEST(GapAnalysis, PerPartTolerancesThroughTheVertexMapCloseEverySeam)
+{
+  Soup s;
+  add_two_squares(s, 0.01, 1e-6, 0);
+  add_two_squares(s, 10, 0.05, 100);
+  const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part(s.points, s.triangles);
+  ASSERT_EQ(parts.size(), 2u);
+  ASSERT_EQ(parts[0].verdict, ST::Gap_verdict::SUGGESTED);
+  ASSERT_EQ(parts[1].verdict, ST::Gap_verdict::SUGGESTED);
+  EXPECT_EQ(parts[0].points, (std::vector<std::size_t>{8, 9, 10, 11, 12, 13, 14, 15}));  // the large squares
+  EXPECT_EQ(parts[1].points, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+  const std::vector<double> tolerances = ST::per_part_vertex_tolerances(parts, s.points.size());
+  ASSERT_EQ(tolerances.size(), s.points.size());
+  for(std::size_t i = 0; i < s.points.size(); ++i)
+    EXPECT_EQ(tolerances[i], i < 8 ? parts[1].suggested_tolerance : parts[0].suggested_tolerance) << i;
+
+  // One tolerance: the small seam closes (the small outline: 6 edges), the large one stays open (8).
+  const ST::Gap_analysis whole = ST::analyze_gaps(s.points, s.triangles);
+  EXPECT_EQ(border_edges_after(s, whole.suggested_tolerance), 14u);
+
+  // The map: both seams close, every weld within the tolerances of both of its points.
+  struct Welds
+  {
+    std::vector<std::pair<std::size_t, std::size_t>> merged;
+    void on_merge(std::size_t d, std::size_t r) { merged.emplace_back(d, r); }
+    void on_refusal(std::size_t, std::size_t, ST::Refusal_reason) {}
+  } welds;
+  Soup repaired = s;
+  const ST::Reconstruction_report r = ST::reconstruct_topology(
+    repaired.points, repaired.triangles,
+    ST::parameters::vertex_tolerance_map(CGAL::make_property_map(tolerances)).visitor(std::ref(welds)));
+  EXPECT_EQ(r.border_edges_after, 12u);
+  EXPECT_EQ(r.snapped_vertices, 4u);
+  EXPECT_EQ(r.output_points, 12u);
+  EXPECT_EQ(r.tolerance, parts[0].suggested_tolerance);  // the largest of the map
+  ASSERT_EQ(welds.merged.size(), 4u);
+  for(const auto& [d, rep] : welds.merged) {
+    const double moved = std::sqrt(CGAL::squared_distance(s.points[d], s.points[rep]));
+    EXPECT_LE(moved, tolerances[d]);
+    EXPECT_LE(moved, tolerances[rep]);
+  }
+  EXPECT_LE(r.max_displacement, parts[0].suggested_tolerance);
+
+  // A point of no part (unused) gets 0; a part without suggestion gives 0 to its points.
+  std::vector<ST::Part_gap_analysis> no_suggestion = parts;
+  no_suggestion[0].verdict = ST::Gap_verdict::OVERLAP;
+  const std::vector<double> partly = ST::per_part_vertex_tolerances(no_suggestion, s.points.size() + 1);
+  EXPECT_EQ(partly[8], 0.0);
+  EXPECT_EQ(partly[0], parts[1].suggested_tolerance);
+  EXPECT_EQ(partly[16], 0.0);
+  EXPECT_THROW(ST::per_part_vertex_tolerances(parts, 10), ST::Invalid_input);
+  // The map gives every tolerance: the automatic tolerance is refused with it.
+  Soup refused = s;
+  EXPECT_THROW(ST::reconstruct_topology(refused.points, refused.triangles,
+                                        ST::parameters::automatic_tolerance(
+                                          true, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(tolerances)))),
+               ST::Invalid_input);
+  EXPECT_EQ(refused.points, s.points);
+  EXPECT_EQ(refused.triangles, s.triangles);
+}
+
 TEST(GapAnalysis, RejectsInvalidSoups)
 {
   std::vector<Point> points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};

@@ -1020,4 +1020,266 @@ TEST(ReconstructTopology, Issue13ShuffledExplodedSoupGivesTheSameSurface)
 
 } // namespace issue13
 
+// Per-vertex tolerances (`vertex_tolerance_map`) in the T-junction split and the pipeline.
+namespace tolerance_map {
+
+using ST::Reconstruction_report;
+using issue13::Recording_visitor;
+
+// Three vertices of a strip (3, 4, 5) on the edge (0, 1) of a big triangle; vertex 5 is moved
+// 1e-3 below the edge. A vertex c is on the border edge [a, b] when its distance to it is at most
+// min(t_c, t_a, t_b): vertex 5 is split only when its own tolerance and those of 0 and 1 reach
+// 1e-3; vertices 3 and 4, on the edge, are split even with tolerances of 0.
+TEST(VertexToleranceMap, TJunctionNeedsTheSmallestToleranceOfTheVertexAndTheEdge)
+{
+  const std::vector<Point> points = {Point(0, 0, 0), Point(4, 0, 0), Point(2, 3, 0), Point(3, 0, 0), Point(1, 0, 0),
+                                     Point(2, -1e-3, 0), Point(2, -2, 0)};
+  const std::vector<Triangle> base = {{0, 1, 2}, {4, 0, 6}, {5, 4, 6}, {3, 5, 6}, {1, 3, 6}};
+  struct Case
+  {
+    std::vector<double> t;
+    std::size_t t_junctions;
+  };
+  const std::vector<Case> cases = {
+    {{1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2}, 3}, {{1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 1e-4, 1e-2}, 2},
+    {{1e-4, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2}, 2}, {{1e-2, 1e-4, 1e-2, 1e-2, 1e-2, 1e-2, 1e-2}, 2},
+    {{0, 0, 0, 0, 0, 1e-2, 0}, 2},                   {{2e-3, 2e-3, 0, 0, 0, 1.5e-3, 0}, 3}};
+  for(const Case& c : cases) {
+    SCOPED_TRACE(::testing::PrintToString(c.t));
+    std::vector<Triangle> triangles = base;
+    Tables tables(triangles, points.size());
+    const ST::Split_report r =
+      ST::split_t_junctions(points, triangles, tables, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(c.t)));
+    EXPECT_EQ(r.t_junctions, c.t_junctions);
+    EXPECT_EQ(r.split_triangles, c.t_junctions);
+    EXPECT_EQ(r.tolerance, *std::max_element(c.t.begin(), c.t.end()));
+    // Three splits close the edge; two leave [4,3] open against [4,5] and [5,3].
+    EXPECT_EQ(count_border(triangles), c.t_junctions == 3 ? 4u : 7u);
+    // The same with one tolerance when the map is constant.
+    if(c.t_junctions == 3 && c.t[2] != 0) {
+      std::vector<Triangle> t2 = base;
+      EXPECT_EQ(ST::split_t_junctions(points, t2, CGAL::parameters::snapping_tolerance(1e-2)).t_junctions, 3u);
+      EXPECT_EQ(t2, triangles);
+    }
+  }
+}
+
+// The pipeline with the map of constant value t and with `snapping_tolerance(t)`: the same points,
+// triangles, visitor calls (welds, refusals, splits, ambiguous sites, in order) and report, on real
+// meshes and on the generated soups.
+TEST(VertexToleranceMap, ConstantMapRepairsAsOneToleranceOnRealAndGeneratedSoups)
+{
+  struct Input
+  {
+    std::string name;
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    double tolerance;
+  };
+  std::vector<Input> inputs;
+  {
+    auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+    inputs.push_back({"pig", points, triangles, 0.3});
+  }
+  {
+    auto [points, triangles] = load<Point>("cad/ALSTOM_TEST4.off");
+    const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    inputs.push_back({"ALSTOM_TEST4", points, triangles, 1e-3 * diag});
+  }
+  {
+    auto [points, triangles] = load<Point>("clean/elephant.off");
+    const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    auto t_soup = soup_test::t_junction_soup(points, triangles, 5, 1e-7 * diag, 17);
+    inputs.push_back({"elephant with T-junctions", t_soup.points, t_soup.triangles, 1e-6 * diag});
+    const double jitter = 1e-5 * diag;
+    auto f_soup = soup_test::small_feature_soup(points, triangles, 10, jitter, 0.5, 8 * jitter, 3);
+    inputs.push_back({"elephant with small features", f_soup.points, f_soup.triangles, 8 * jitter});
+  }
+  for(const Input& in : inputs) {
+    SCOPED_TRACE(in.name);
+    const std::vector<double> constant(in.points.size(), in.tolerance);
+    auto p1 = in.points, p2 = in.points;
+    auto t1 = in.triangles, t2 = in.triangles;
+    Recording_visitor v1, v2;
+    const Reconstruction_report r1 = ST::reconstruct_topology(
+      p1, t1, CGAL::parameters::snapping_tolerance(in.tolerance).visitor(std::ref(v1)));
+    const Reconstruction_report r2 = ST::reconstruct_topology(
+      p2, t2, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(constant)).visitor(std::ref(v2)));
+    EXPECT_GT(r1.snapped_vertices + r1.split_triangles, 0u);
+    EXPECT_EQ(p1, p2);
+    EXPECT_EQ(t1, t2);
+    EXPECT_EQ(v1.told, v2.told);
+    issue13::expect_same_report(r1, r2);
+    EXPECT_EQ(r1.tolerance, r2.tolerance);
+    EXPECT_EQ(r1.max_displacement, r2.max_displacement);
+    EXPECT_EQ(r1.snapped_vertices, r2.snapped_vertices);
+    EXPECT_EQ(r1.split_triangles, r2.split_triangles);
+    EXPECT_EQ(r1.border_edges_after, r2.border_edges_after);
+    EXPECT_EQ(r1.small_features_resolved, r2.small_features_resolved);
+    EXPECT_EQ(r1.refused_welds(), r2.refused_welds());
+  }
+  // Into a FaceGraph (the second overload): the same mesh.
+  const Input& pig = inputs[0];
+  const std::vector<double> constant(pig.points.size(), pig.tolerance);
+  Mesh m1, m2;
+  const Reconstruction_report r1 =
+    ST::reconstruct_topology(pig.points, pig.triangles, m1, CGAL::parameters::snapping_tolerance(pig.tolerance));
+  const Reconstruction_report r2 = ST::reconstruct_topology(
+    pig.points, pig.triangles, m2, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(constant)));
+  EXPECT_EQ(num_faces(m1), num_faces(m2));
+  EXPECT_EQ(num_vertices(m1), num_vertices(m2));
+  EXPECT_EQ(border_edges(m1), border_edges(m2));
+  EXPECT_EQ(r1.orientation_flips, r2.orientation_flips);
+  EXPECT_EQ(r1.tolerance, r2.tolerance);
+}
+
+// Exactly equal points with different tolerances: the point they become takes the smaller one,
+// whatever their order. The patent's cube with V0 copied exactly (8, for T10) and 1e-3 away
+// (9, for T11): 9 is welded to V0 only when the tolerances of 0, 8 and 9 all reach 1e-3.
+TEST(VertexToleranceMap, ExactDuplicatesKeepTheSmallestTolerance)
+{
+  std::vector<Point> base_points = {Point(-1, -1, 1), Point(1, -1, 1), Point(1, 1, 1), Point(-1, 1, 1),
+                                    Point(-1, -1, -1), Point(1, -1, -1), Point(1, 1, -1), Point(-1, 1, -1),
+                                    Point(-1, -1, 1), Point(-1 + 1e-3, -1 + 1e-3, 1)};
+  std::vector<Triangle> base = {{0, 1, 3}, {2, 3, 1}, {2, 6, 3}, {7, 3, 6}, {2, 1, 6}, {5, 6, 1},
+                                {4, 7, 5}, {6, 5, 7}, {1, 0, 5}, {4, 5, 0}, {3, 7, 8}, {4, 9, 7}};
+  struct Case
+  {
+    double t0, t8;
+    bool welded;
+  };
+  for(const Case& c : {Case{1e-2, 1e-4, false}, Case{1e-4, 1e-2, false}, Case{1e-2, 1e-2, true}}) {
+    SCOPED_TRACE(std::to_string(c.t0) + " " + std::to_string(c.t8));
+    std::vector<double> t(base_points.size(), 0.5);
+    t[0] = c.t0;
+    t[8] = c.t8;
+    t[9] = 1e-2;
+    auto points = base_points;
+    auto triangles = base;
+    const Reconstruction_report r =
+      ST::reconstruct_topology(points, triangles, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t)));
+    EXPECT_EQ(r.exact_duplicates, 1u);
+    EXPECT_EQ(r.snapped_vertices, c.welded ? 1u : 0u);
+    EXPECT_EQ(r.border_edges_after, c.welded ? 0u : 4u);
+    EXPECT_EQ(r.tolerance, 0.5);
+  }
+}
+
+// A soup repaired with a tolerance per point: the tolerances of one patch of the elephant cut into
+// patches are larger than the others. No point moves farther than its own tolerance; the same
+// surface from the shuffled input (points renumbered with their tolerances, triangles shuffled and
+// rotated); a second run on the result (its points keep their tolerances) changes nothing.
+TEST(VertexToleranceMap, PipelineMovesNoPointBeyondItsToleranceWhateverTheOrder)
+{
+  auto [mesh_points, mesh_triangles] = load<Point>("clean/elephant.off");
+  const double diag = ST::internal::bounding_box_diagonal(mesh_points, CGAL::Identity_property_map<Point>());
+  const auto soup = soup_test::t_junction_soup(mesh_points, mesh_triangles, 5, 3e-7 * diag, 23);
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> draw(0, 2e-6 * diag);
+  std::vector<double> t(soup.points.size());
+  for(std::size_t i = 0; i < t.size(); ++i) t[i] = soup.points[i].x() < 0 ? 2e-6 * diag : draw(rng);
+
+  struct Welds
+  {
+    std::vector<std::pair<std::size_t, std::size_t>> merged;
+    void on_merge(std::size_t d, std::size_t r) { merged.emplace_back(d, r); }
+    void on_refusal(std::size_t, std::size_t, ST::Refusal_reason) {}
+  } welds;
+  auto p1 = soup.points;
+  auto t1 = soup.triangles;
+  const Reconstruction_report r1 = ST::reconstruct_topology(
+    p1, t1, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t)).visitor(std::ref(welds)));
+  EXPECT_GT(r1.snapped_vertices, 100u);
+  EXPECT_GT(r1.split_triangles, 0u);
+  EXPECT_GT(r1.border_edges_after, 0u);  // where the tolerances are too small, seams stay open
+  EXPECT_LT(r1.border_edges_after, r1.border_edges_before);
+  EXPECT_EQ(welds.merged.size(), r1.snapped_vertices);
+  for(const auto& [d, rep] : welds.merged) {
+    const double e = std::min(t[d], t[rep]);
+    EXPECT_NE(CGAL::compare(CGAL::squared_distance(soup.points[d], soup.points[rep]), e * e), CGAL::LARGER) << d;
+  }
+  EXPECT_LE(r1.max_displacement, 2e-6 * diag);
+
+  // On TBB's threads: the same points, triangles and report.
+  {
+    auto pp = soup.points;
+    auto tp = soup.triangles;
+    const Reconstruction_report rp = ST::reconstruct_topology<CGAL::Parallel_if_available_tag>(
+      pp, tp, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t)));
+    EXPECT_EQ(pp, p1);
+    EXPECT_EQ(tp, t1);
+    issue13::expect_same_report(rp, r1);
+  }
+
+  // Shuffled.
+  std::vector<std::size_t> relabel(soup.points.size());
+  std::iota(relabel.begin(), relabel.end(), 0);
+  std::shuffle(relabel.begin(), relabel.end(), rng);
+  std::vector<Point> p2(soup.points.size());
+  std::vector<double> tol2(soup.points.size());
+  for(std::size_t i = 0; i < relabel.size(); ++i) {
+    p2[relabel[i]] = soup.points[i];
+    tol2[relabel[i]] = t[i];
+  }
+  std::vector<Triangle> t2 = soup.triangles;
+  std::shuffle(t2.begin(), t2.end(), rng);
+  for(Triangle& f : t2) {
+    std::rotate(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(rng() % 3), f.end());
+    for(std::size_t& v : f) v = relabel[v];
+  }
+  const Reconstruction_report r2 =
+    ST::reconstruct_topology(p2, t2, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(tol2)));
+  EXPECT_EQ(r2.snapped_vertices, r1.snapped_vertices);
+  EXPECT_EQ(r2.split_triangles, r1.split_triangles);
+  EXPECT_EQ(r2.border_edges_after, r1.border_edges_after);
+  EXPECT_EQ(r2.max_displacement, r1.max_displacement);
+  EXPECT_EQ(issue13::triangles_by_coordinates(p1, t1), issue13::triangles_by_coordinates(p2, t2));
+
+  // Again on the result: every output point is an input point and keeps its tolerance.
+  std::map<std::array<double, 3>, double> tolerance_at;
+  for(std::size_t i = 0; i < soup.points.size(); ++i) {
+    const std::array<double, 3> key = {soup.points[i].x(), soup.points[i].y(), soup.points[i].z()};
+    auto [it, added] = tolerance_at.emplace(key, t[i]);
+    if(!added) it->second = std::min(it->second, t[i]);
+  }
+  std::vector<double> t_out;
+  for(const Point& q : p1) t_out.push_back(tolerance_at.at({q.x(), q.y(), q.z()}));
+  auto p3 = p1;
+  auto t3 = t1;
+  const Reconstruction_report r3 =
+    ST::reconstruct_topology(p3, t3, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t_out)));
+  EXPECT_EQ(r3.snapped_vertices, 0u);
+  EXPECT_EQ(r3.split_triangles, 0u);
+  EXPECT_EQ(p3, p1);
+  EXPECT_EQ(t3, t1);
+}
+
+TEST(VertexToleranceMap, PipelineRefusesBadValuesAndLeavesTheSoupUnchanged)
+{
+  auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
+  const auto p0 = points;
+  const auto t0 = triangles;
+  for(const double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    std::vector<double> t(points.size(), 0.3);
+    t[points.size() / 2] = bad;
+    EXPECT_THROW(ST::reconstruct_topology(points, triangles, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t))),
+                 ST::Invalid_input);
+    EXPECT_EQ(points, p0);
+    EXPECT_EQ(triangles, t0);
+  }
+  const std::vector<double> t(points.size(), 0.3);
+  EXPECT_THROW(ST::reconstruct_topology(points, triangles,
+                                        ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t),
+                                                                             CGAL::parameters::snapping_tolerance(0.3))),
+               ST::Invalid_input);
+  EXPECT_THROW(ST::reconstruct_topology(points, triangles,
+                                        ST::parameters::relative_tolerance(1e-3, ST::parameters::vertex_tolerance_map(
+                                                                                   CGAL::make_property_map(t)))),
+               ST::Invalid_input);
+  EXPECT_EQ(points, p0);
+  EXPECT_EQ(triangles, t0);
+}
+
+} // namespace tolerance_map
+
 } // namespace reconstruct_topology_test

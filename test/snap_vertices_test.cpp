@@ -12,6 +12,7 @@
 #include <Soup_topology/internal/tolerance_graph.h>
 
 #include "bounded_run.h"
+#include "soup_generators.h"
 #include "test_utilities.h"
 
 #include <CGAL/Point_set_3.h>
@@ -1055,6 +1056,254 @@ TEST(SnapVertices, Issue13PointsUnderTheIdentityMapAreNotCopied)
   const std::vector<Point>& read = By_value_helper::points_as_vector(points, by_value, storage);
   EXPECT_EQ(&read, &storage);
   EXPECT_EQ(read, points);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Per-vertex tolerances (`vertex_tolerance_map`): a pair u, v is within tolerance when
+// |uv| <= min(t_u, t_v).
+
+// Everything a weld visitor is told, in order: (0, duplicate, representative, 0) for a merge,
+// (1, vertex, representative, reason) for a refusal.
+struct Weld_log
+{
+  std::vector<std::array<std::size_t, 4>> told;
+  void on_merge(std::size_t d, std::size_t r) { told.push_back({0, d, r, 0}); }
+  void on_refusal(std::size_t v, std::size_t r, ST::Refusal_reason why)
+  { told.push_back({1, v, r, static_cast<std::size_t>(why)}); }
+};
+
+void expect_same_snap_report(const ST::Snap_report& a, const ST::Snap_report& b)
+{
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.candidate_vertices, b.candidate_vertices);
+  EXPECT_EQ(a.merged_vertices, b.merged_vertices);
+  EXPECT_EQ(a.clusters, b.clusters);
+  EXPECT_EQ(a.refused_same_triangle, b.refused_same_triangle);
+  EXPECT_EQ(a.refused_degenerate, b.refused_degenerate);
+  EXPECT_EQ(a.refused_flip, b.refused_flip);
+  EXPECT_EQ(a.refused_holds_welds, b.refused_holds_welds);
+  EXPECT_EQ(a.ambiguous_sites, b.ambiguous_sites);
+  EXPECT_EQ(a.short_edges, b.short_edges);
+  EXPECT_EQ(a.border_edges_before, b.border_edges_before);
+  EXPECT_EQ(a.border_edges_after, b.border_edges_after);
+  EXPECT_EQ(a.max_displacement, b.max_displacement);
+  EXPECT_EQ(a.small_features_resolved, b.small_features_resolved);
+  EXPECT_EQ(a.collapsed_triangles, b.collapsed_triangles);
+  EXPECT_EQ(a.refused_uncovered_collapse, b.refused_uncovered_collapse);
+}
+
+// The weld with the map of constant value `tol` and with `snapping_tolerance(tol)`, under both
+// policies: the same triangles, the same visitor calls in the same order, the same report.
+void expect_constant_map_welds_as_one_tolerance(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
+                                                double tol)
+{
+  const std::vector<double> constant(points.size(), tol);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    SCOPED_TRACE(policy == ST::Small_features::REFUSE ? "refuse" : "collapse");
+    std::vector<Triangle> t1 = triangles, t2 = triangles;
+    Weld_log v1, v2;
+    const ST::Snap_report r1 = ST::snap_vertices(
+      points, t1, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(tol).visitor(std::ref(v1))));
+    const ST::Snap_report r2 = ST::snap_vertices(
+      points, t2,
+      ST::parameters::small_features(
+        policy, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(constant)).visitor(std::ref(v2))));
+    EXPECT_GT(r1.merged_vertices, 0u);
+    EXPECT_EQ(t1, t2);
+    EXPECT_EQ(v1.told, v2.told);
+    expect_same_snap_report(r1, r2);
+  }
+}
+
+TEST(VertexToleranceMap, ConstantMapWeldsAsOneToleranceOnRealAndGeneratedSoups)
+{
+  {
+    SCOPED_TRACE("ALSTOM_TEST4 at 1e-3 of its diagonal");
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    soup_test::read_data_mesh("cad/ALSTOM_TEST4.off", points, triangles);
+    expect_constant_map_welds_as_one_tolerance(
+      points, triangles, 1e-3 * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>()));
+  }
+  std::vector<Point> elephant;
+  std::vector<Triangle> elephant_triangles;
+  soup_test::read_data_mesh("clean/elephant.off", elephant, elephant_triangles);
+  const double diag = ST::internal::bounding_box_diagonal(elephant, CGAL::Identity_property_map<Point>());
+  {
+    SCOPED_TRACE("elephant exploded and jittered by about the tolerance");
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    ST::index_triangles(jittered_soup<Point>(elephant, elephant_triangles, 0.6e-6 * diag, 11), points, triangles);
+    expect_constant_map_welds_as_one_tolerance(points, triangles, 1e-6 * diag);
+  }
+  {
+    SCOPED_TRACE("elephant cut into patches with T-junctions");
+    const auto soup = soup_test::t_junction_soup(elephant, elephant_triangles, 5, 1e-7 * diag, 17);
+    expect_constant_map_welds_as_one_tolerance(soup.points, soup.triangles, 1e-6 * diag);
+  }
+  {
+    SCOPED_TRACE("elephant with features smaller than the tolerance");
+    const double jitter = 1e-5 * diag;
+    const auto soup = soup_test::small_feature_soup(elephant, elephant_triangles, 10, jitter, 0.5, 8 * jitter, 3);
+    expect_constant_map_welds_as_one_tolerance(soup.points, soup.triangles, 8 * jitter);
+  }
+}
+
+// The patent's cube with V0 copied 1e-3 away (V0b, index 8): welded only when the tolerances of
+// both V0 and V0b reach 1e-3; a large tolerance on one side does not pull the other.
+TEST(VertexToleranceMap, APairIsWeldedOnlyWithinTheSmallerOfItsTolerances)
+{
+  std::vector<Point> points = cube_points<Point>();
+  points.push_back(Point(-1 + 1e-3, -1, 1));
+  std::vector<Triangle> base = cube_triangles;
+  base[10] = {3, 7, 8};
+  base[11] = {4, 8, 7};
+  struct Case
+  {
+    double t0, t8;
+    std::size_t merged;
+  };
+  for(const Case& c : {Case{1e-2, 1e-4, 0}, Case{1e-4, 1e-2, 0}, Case{1e-2, 1e-2, 1}, Case{2e-3, 1.5e-3, 1},
+                       Case{1e-2, 0, 0}}) {
+    SCOPED_TRACE("t(V0) = " + std::to_string(c.t0) + ", t(V0b) = " + std::to_string(c.t8));
+    std::vector<double> t(points.size(), 0.5);  // the other vertices: within 0.5 of no border vertex
+    t[0] = c.t0;
+    t[8] = c.t8;
+    std::vector<Triangle> triangles = base;
+    Weld_log log;
+    const ST::Snap_report r = ST::snap_vertices(
+      points, triangles, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t)).visitor(std::ref(log)));
+    EXPECT_EQ(r.merged_vertices, c.merged);
+    EXPECT_EQ(r.tolerance, 0.5);  // the largest of the map
+    if(c.merged == 1) {
+      EXPECT_EQ(triangles[10], (Triangle{3, 7, 0}));
+      EXPECT_EQ(r.border_edges_after, 0u);
+      EXPECT_EQ(log.told, (std::vector<std::array<std::size_t, 4>>{{0, 8, 0, 0}}));
+      EXPECT_LE(r.max_displacement, std::min(c.t0, c.t8));
+    } else {
+      EXPECT_EQ(triangles, base);
+      EXPECT_EQ(r.border_edges_after, 4u);
+      EXPECT_TRUE(log.told.empty());
+    }
+  }
+}
+
+// The short edges (two vertices of one triangle within the tolerance of the pair) against a brute
+// force over every edge, and every weld within the tolerances of both of its vertices, on an
+// exploded elephant (every edge a border edge) with tolerances drawn per point around the
+// jitter; shuffling the triangles, rotating their corners and renumbering the points (the map
+// follows) gives the same surface, and a second run changes nothing.
+TEST(VertexToleranceMap, DecisionsFollowThePairRuleWhateverTheOrder)
+{
+  std::vector<Point> mesh;
+  std::vector<Triangle> mesh_triangles;
+  soup_test::read_data_mesh("clean/elephant.off", mesh, mesh_triangles);
+  const double diag = ST::internal::bounding_box_diagonal(mesh, CGAL::Identity_property_map<Point>());
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::index_triangles(jittered_soup<Point>(mesh, mesh_triangles, 0.6e-6 * diag, 5), points, triangles);
+  // Tolerances from 0 to 4e-6 of the diagonal, and, for the corners of every 50th triangle, as
+  // long as the edges (short edges appear).
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> draw(0, 4e-6 * diag);
+  std::vector<double> t(points.size());
+  for(double& x : t) x = draw(rng);
+  for(std::size_t f = 0; f < triangles.size(); f += 50)
+    for(std::size_t v : triangles[f]) t[v] = 2e-2 * diag;
+
+  std::size_t short_edges = 0;
+  for(const Triangle& f : triangles)
+    for(int k = 0; k < 3; ++k) {
+      const std::size_t u = f[k], v = f[(k + 1) % 3];
+      const double e = std::min(t[u], t[v]);
+      if(CGAL::compare(CGAL::squared_distance(points[u], points[v]), e * e) != CGAL::LARGER) ++short_edges;
+    }
+  EXPECT_GT(short_edges, 0u);
+
+  std::vector<Triangle> welded = triangles;
+  Weld_log log;
+  const auto np = ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t));
+  const ST::Snap_report r = ST::snap_vertices(points, welded, np.visitor(std::ref(log)));
+  EXPECT_EQ(r.short_edges, short_edges);
+  EXPECT_GT(r.merged_vertices, points.size() / 3);
+  EXPECT_EQ(r.tolerance, *std::max_element(t.begin(), t.end()));
+  std::size_t merges = 0;
+  for(const auto& x : log.told) {
+    if(x[0] != 0) continue;
+    ++merges;
+    const double e = std::min(t[x[1]], t[x[2]]);
+    EXPECT_NE(CGAL::compare(CGAL::squared_distance(points[x[1]], points[x[2]]), e * e), CGAL::LARGER);
+  }
+  EXPECT_EQ(merges, r.merged_vertices);
+  // An edge closes where both pairs of its ends are within their tolerances.
+  EXPECT_LT(r.border_edges_after, r.border_edges_before);
+
+  // On TBB's threads: the same triangles, visitor calls and report.
+  std::vector<Triangle> welded_in_parallel = triangles;
+  Weld_log parallel_log;
+  const ST::Snap_report rp = ST::snap_vertices<CGAL::Parallel_if_available_tag>(
+    points, welded_in_parallel, np.visitor(std::ref(parallel_log)));
+  EXPECT_EQ(welded_in_parallel, welded);
+  EXPECT_EQ(parallel_log.told, log.told);
+  expect_same_snap_report(rp, r);
+
+  // A second run changes nothing.
+  std::vector<Triangle> again = welded;
+  EXPECT_EQ(ST::snap_vertices(points, again, np).merged_vertices, 0u);
+  EXPECT_EQ(again, welded);
+
+  // Shuffled triangles, rotated corners, renumbered points (the map renumbered with them).
+  std::vector<std::size_t> relabel(points.size());
+  std::iota(relabel.begin(), relabel.end(), 0);
+  std::shuffle(relabel.begin(), relabel.end(), rng);
+  std::vector<Point> p2(points.size());
+  std::vector<double> t2(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) {
+    p2[relabel[i]] = points[i];
+    t2[relabel[i]] = t[i];
+  }
+  std::vector<Triangle> tri2 = triangles;
+  std::shuffle(tri2.begin(), tri2.end(), rng);
+  for(Triangle& f : tri2) {
+    std::rotate(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(rng() % 3), f.end());
+    for(std::size_t& v : f) v = relabel[v];
+  }
+  const ST::Snap_report r2 = ST::snap_vertices(p2, tri2, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t2)));
+  EXPECT_EQ(r2.merged_vertices, r.merged_vertices);
+  EXPECT_EQ(r2.short_edges, r.short_edges);
+  EXPECT_EQ(r2.refused(), r.refused());
+  EXPECT_EQ(r2.ambiguous_sites.size(), r.ambiguous_sites.size());
+  EXPECT_EQ(r2.border_edges_after, r.border_edges_after);
+  EXPECT_EQ(geometric_triangles(points, welded), geometric_triangles(p2, tri2));
+}
+
+TEST(VertexToleranceMap, BadValuesAndOtherToleranceParametersAreRefused)
+{
+  std::vector<Point> points = cube_points<Point>();
+  std::vector<Triangle> triangles = cube_triangles;
+  for(const double bad : {-1e-3, std::nan(""), std::numeric_limits<double>::infinity(), 1e300}) {
+    SCOPED_TRACE(bad);
+    std::vector<double> t(points.size(), 1e-3);
+    t[5] = bad;
+    const auto np = ST::parameters::vertex_tolerance_map(CGAL::make_property_map(t));
+    EXPECT_THROW(ST::snap_vertices(points, triangles, np), ST::Invalid_input);
+    Tables tables(triangles, points.size());
+    EXPECT_THROW(ST::split_t_junctions(points, triangles, tables, np), ST::Invalid_input);
+  }
+  const std::vector<double> t(points.size(), 1e-3);
+  const auto map = CGAL::make_property_map(t);
+  EXPECT_THROW(ST::snap_vertices(points, triangles, ST::parameters::vertex_tolerance_map(
+                                                      map, CGAL::parameters::snapping_tolerance(1e-3))),
+               ST::Invalid_input);
+  EXPECT_THROW(ST::snap_vertices(points, triangles,
+                                 ST::parameters::relative_tolerance(1e-3, ST::parameters::vertex_tolerance_map(map))),
+               ST::Invalid_input);
+  EXPECT_EQ(triangles, cube_triangles);
+  // A zero tolerance everywhere welds nothing that is not equal (the cube has no such vertex).
+  const std::vector<double> zero(points.size(), 0.0);
+  const ST::Snap_report r = ST::snap_vertices(points, triangles, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(zero)));
+  EXPECT_EQ(r.merged_vertices, 0u);
+  EXPECT_EQ(r.tolerance, 0.0);
 }
 
 } // namespace

@@ -237,10 +237,13 @@ inline void suggest_tolerance(Gap_analysis& a)
 namespace internal {
 
 /// the soup of `points` and `triangles` exactly welded into `pts` and `tris`: validated, equal
-/// points merged, collapsed triangles removed, and only the points some triangle uses kept.
+/// points merged, collapsed triangles removed, and only the points some triangle uses kept. If
+/// `welded_index` is not null, it receives the index in `pts` of every input point (-1 for a
+/// point no kept triangle uses).
 template <class Point, class PointRange, class TriangleRange, class PointMap>
 void exactly_welded_copy(const PointRange& points, const TriangleRange& triangles, const PointMap& pm,
-                         std::vector<Point>& pts, std::vector<std::array<std::size_t, 3>>& tris)
+                         std::vector<Point>& pts, std::vector<std::array<std::size_t, 3>>& tris,
+                         std::vector<std::size_t>* welded_index = nullptr)
 {
   using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
   tris.reserve(triangles.size());
@@ -262,7 +265,7 @@ void exactly_welded_copy(const PointRange& points, const TriangleRange& triangle
     else
       pts.push_back(Point(FT(CGAL::to_double(p.x())), FT(CGAL::to_double(p.y())), FT(CGAL::to_double(p.z()))));
   }
-  merge_duplicate_points_and_map(pts, tris);
+  const std::vector<std::size_t> merged_index = merge_duplicate_points_and_map(pts, tris);
   remove_collapsed_triangles(tris);
   std::vector<std::size_t> index(pts.size(), static_cast<std::size_t>(-1));
   std::size_t kept = 0;
@@ -273,6 +276,10 @@ void exactly_welded_copy(const PointRange& points, const TriangleRange& triangle
   pts.resize(kept);
   for(auto& t : tris)
     for(std::size_t& v : t) v = index[v];
+  if(welded_index != nullptr) {
+    welded_index->resize(merged_index.size());
+    for(std::size_t i = 0; i < merged_index.size(); ++i) (*welded_index)[i] = index[merged_index[i]];
+  }
 }
 
 /// appends to `border_features` the features of triangle `(p, q, r)` (index `t`) that involve its
@@ -512,6 +519,9 @@ struct Part_gap_analysis
   Gap_verdict verdict = Gap_verdict::CLOSED;  ///< the verdict of the rule on its gaps and its bound
   double suggested_tolerance = 0;             ///< the tolerance (0 unless `SUGGESTED`; `NaN` for `OVERLAP`)
   std::string reasoning;                      ///< the conclusion in words, with the numbers
+  /// the points of the part, as indices into the points given, in increasing order (a point no
+  /// triangle uses belongs to no part); `per_part_vertex_tolerances()` reads them.
+  std::vector<std::size_t> points;
 };
 
 namespace internal {
@@ -580,10 +590,12 @@ std::vector<double> smallest_border_feature_per_piece(const std::vector<typename
 
 /// the public summary of the analysis of every part, in the documented order of
 /// `analyze_gaps_per_part()`.
-inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>& parts)
+inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>& parts,
+                                                      std::vector<std::vector<std::size_t>>& points_of_parts)
 {
   std::vector<Part_gap_analysis> out;
-  for(Gap_analysis& a : parts) {
+  for(std::size_t k = 0; k < parts.size(); ++k) {
+    Gap_analysis& a = parts[k];
     std::sort(a.gaps.begin(), a.gaps.end());
     a.feature_bound = a.border_features.minimum / 3;
     suggest_tolerance(a);
@@ -595,14 +607,16 @@ inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>&
     p.verdict = a.verdict;
     p.suggested_tolerance = a.suggested_tolerance;
     p.reasoning = a.reasoning;
-    out.push_back(p);
+    p.points = std::move(points_of_parts[k]);
+    out.push_back(std::move(p));
   }
   std::sort(out.begin(), out.end(), [](const Part_gap_analysis& x, const Part_gap_analysis& y) {
     if(x.triangles != y.triangles) return x.triangles > y.triangles;
     if(x.feature_bound != y.feature_bound) return x.feature_bound > y.feature_bound;
     if(x.border_edges != y.border_edges) return x.border_edges > y.border_edges;
     if(x.border_vertices != y.border_vertices) return x.border_vertices > y.border_vertices;
-    return x.reasoning < y.reasoning;
+    if(x.reasoning != y.reasoning) return x.reasoning < y.reasoning;
+    return x.points < y.points;
   });
   return out;
 }
@@ -613,7 +627,8 @@ inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>&
 /// \brief proposes a snapping tolerance per part of the soup, where one tolerance does not fit
 /// all: a small part and a large part in one assembly, each with seams at its own scale.
 ///
-/// A report only: `reconstruct_topology()` welds with one tolerance. The soup is welded exactly
+/// `per_part_vertex_tolerances()` turns the result into a tolerance per point, for the
+/// `vertex_tolerance_map` of `reconstruct_topology()`. The soup is welded exactly
 /// as by `analyze_gaps()`, and its gaps and border features are measured the same way. The
 /// *parts* are then the groups of triangles connected by shared vertices or by a gap smaller
 /// than the feature bounds of both sides: a *piece* is a set of triangles connected by shared
@@ -624,7 +639,8 @@ inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>&
 ///
 /// The parts do not depend on the order of the points or the triangles; they are listed by
 /// decreasing number of triangles, then decreasing feature bound, border edges and border
-/// vertices, then by their reasoning.
+/// vertices, then by their reasoning (then by their points). Each lists its points
+/// (`Part_gap_analysis::points`, indices into `points`).
 ///
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a range of triangles (3 indices each)
@@ -653,7 +669,8 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   const Geom_traits gt = NP_helper::get_geom_traits(np);
   std::vector<Point> pts;
   std::vector<std::array<std::size_t, 3>> tris;
-  internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris);
+  std::vector<std::size_t> welded_index;
+  internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris, &welded_index);
   const Adjacency_tables tables(tris, pts.size());
 
   // The pieces (the triangles connected by shared vertices) and their smallest border features:
@@ -716,7 +733,48 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
     if(std::isfinite(nearest[k].distance)) a.gaps.push_back(nearest[k].distance);
     else ++a.gaps_beyond_search_radius;
   }
-  return internal::summarize_parts(parts);
+  // The input points of every part, through the exact weld (in increasing order).
+  std::vector<std::vector<std::size_t>> points_of_parts(parts.size());
+  for(std::size_t i = 0; i < welded_index.size(); ++i) {
+    const std::size_t v = welded_index[i];
+    if(v == static_cast<std::size_t>(-1)) continue;
+    points_of_parts[part_of_piece(component[*tables.triangles_around_vertex(static_cast<size_type>(v)).begin()])]
+      .push_back(i);
+  }
+  return internal::summarize_parts(parts, points_of_parts);
+}
+
+/// \ingroup PkgSoupTopologyGaps
+/// \brief the tolerance of every point given by the analysis per part: every point of a part
+/// (`Part_gap_analysis::points`) gets the tolerance suggested for its part, 0 for a part without
+/// suggestion (verdict other than `SUGGESTED`) and for a point of no part. The result is meant for
+/// the `vertex_tolerance_map` of `reconstruct_topology()`:
+/// \code
+/// const std::vector<Part_gap_analysis> parts = analyze_gaps_per_part(points, triangles);
+/// const std::vector<double> tolerances = per_part_vertex_tolerances(parts, points.size());
+/// reconstruct_topology(points, triangles,
+///                      parameters::vertex_tolerance_map(CGAL::make_property_map(tolerances)));
+/// \endcode
+/// Two points of different parts are then welded only within the smaller of their tolerances.
+/// \param parts the result of `analyze_gaps_per_part()` on the soup
+/// \param number_of_points the number of points of the soup analysed
+/// \returns `number_of_points` tolerances, indexed like the points.
+/// \throws Invalid_input if a part lists a point `>= number_of_points`.
+inline std::vector<double> per_part_vertex_tolerances(const std::vector<Part_gap_analysis>& parts,
+                                                      std::size_t number_of_points)
+{
+  std::vector<double> tolerances(number_of_points, 0.0);
+  for(const Part_gap_analysis& part : parts) {
+    const double t = part.verdict == Gap_verdict::SUGGESTED && std::isfinite(part.suggested_tolerance)
+                       ? part.suggested_tolerance : 0.0;
+    for(std::size_t i : part.points) {
+      if(i >= number_of_points)
+        throw Invalid_input("per_part_vertex_tolerances: a part lists point " + std::to_string(i) + " of a soup of " +
+                            std::to_string(number_of_points) + " points");
+      tolerances[i] = t;
+    }
+  }
+  return tolerances;
 }
 
 } // namespace Soup_topology

@@ -44,6 +44,13 @@ namespace Soup_topology {
 /// the tolerance given as a fraction of the diagonal of the bounding box of the points
 /// (instead of CGAL's absolute `snapping_tolerance`); a `double`.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(relative_tolerance_t, relative_tolerance)
+/// one tolerance per point instead of one for the whole soup: a `ReadablePropertyMap` whose key
+/// is the index of a point in the range given (`std::size_t`) and whose value is a finite number
+/// >= 0 convertible to `double` (for instance `CGAL::make_property_map(std::vector<double>&)`).
+/// Two vertices u and v are within tolerance of each other when |uv| <= min(t_u, t_v); a vertex c
+/// is within tolerance of the segment [a,b] when its distance to it is <= min(t_c, t_a, t_b).
+/// Not with `snapping_tolerance`, `relative_tolerance` or `automatic_tolerance`.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(vertex_tolerance_map_t, vertex_tolerance_map)
 /// the vertices that `snap_vertices()` may not move (they may still receive welds): a
 /// `const std::vector<char>*`, nonzero for a fixed vertex, ignored unless it has one entry per
 /// point. `reconstruct_topology()` fixes with it the vertices that received welds in earlier

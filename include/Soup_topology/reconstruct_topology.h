@@ -51,7 +51,9 @@ namespace Soup_topology {
 /// \brief everything `reconstruct_topology()` did: nothing is changed silently.
 struct Reconstruction_report
 {
-  double tolerance = 0;                     ///< the absolute tolerance used
+  /// the absolute tolerance used; with `vertex_tolerance_map`, the largest tolerance of the map
+  /// (over the points given)
+  double tolerance = 0;
   std::size_t input_points = 0;             ///< points given
   std::size_t input_triangles = 0;          ///< triangles given
   std::size_t exact_duplicates = 0;         ///< points merged by the exact weld
@@ -273,12 +275,27 @@ public:
     input_index_.clear();
   }
 
+  /// gives every point its own tolerance (`vertex_tolerance_map`): `tolerances[k]` is that of
+  /// `pts[k]`, checked. Called before the exact weld, which keeps them with the points.
+  void set_vertex_tolerances(std::vector<FT>&& tolerances) { tolerances_ = std::move(tolerances); }
+
   /// merges exactly equal points (a merged point is known by the first of the equal input
-  /// points) and removes the triangles that collapse.
+  /// points) and removes the triangles that collapse. With per-vertex tolerances, a merged point
+  /// takes the smallest tolerance of the equal points (which does not depend on their order).
   void weld_exact_duplicates()
   {
     const std::vector<std::size_t> exact_index = merge_duplicate_points_and_map<ConcurrencyTag>(pts_, triangles_);
     report_.exact_duplicates = exact_index.size() - pts_.size();
+    if(!tolerances_.empty()) {
+      std::vector<FT> merged(pts_.size());
+      std::vector<char> seen(pts_.size(), 0);
+      for(std::size_t i = 0; i < exact_index.size(); ++i) {
+        FT& t = merged[exact_index[i]];
+        if(!seen[exact_index[i]] || tolerances_[i] < t) t = tolerances_[i];
+        seen[exact_index[i]] = 1;
+      }
+      tolerances_.swap(merged);
+    }
     std::vector<std::uint32_t> first(pts_.size());
     for(std::size_t i = exact_index.size(); i-- > 0;)
       first[exact_index[i]] = static_cast<std::uint32_t>(input_point_index(input_index_, i));
@@ -319,10 +336,22 @@ public:
   {
     report_.tolerance = CGAL::to_double(eps);
     report_.small_features = policy;
+    // Per-vertex tolerances: the rounds read those of the pipeline's points, without copy.
+    if(tolerances_.empty())
+      run_rounds(CGAL::parameters::snapping_tolerance(eps).geom_traits(gt_), max_rounds, do_split, policy, user_visitor);
+    else
+      run_rounds(parameters::vertex_tolerance_map(Vertex_tolerance_vector<FT>{&tolerances_}).geom_traits(gt_), max_rounds,
+                 do_split, policy, user_visitor);
+  }
+
+private:
+  template <class WeldNamedParameters, class User_visitor>
+  void run_rounds(const WeldNamedParameters& weld_np, std::size_t max_rounds, bool do_split, Small_features policy,
+                  User_visitor& user_visitor)
+  {
     merged_into_.resize(pts_.size());
     for(std::size_t i = 0; i < merged_into_.size(); ++i) merged_into_[i] = static_cast<std::uint32_t>(i);
     Pipeline_visitor<User_visitor> recorder{&merged_into_, &input_index_, &user_visitor};
-    const auto weld_np = CGAL::parameters::snapping_tolerance(eps).geom_traits(gt_);
     // A vertex that received welds is never moved in a later round (its welded points would
     // move farther than the tolerance); it may still receive more.
     std::vector<char> holds_welds(pts_.size(), 0);
@@ -353,6 +382,8 @@ public:
     if constexpr(tells_ambiguous_sites<User_visitor>::value)
       for(std::size_t v : sites) user_visitor.on_ambiguous_site(input_point_index(input_index_, v));
   }
+
+public:
 
   /// how far the points moved: every input point follows its exact-weld image (same
   /// coordinates) and then the chain of welds; only the points that were welded can move.
@@ -433,6 +464,7 @@ private:
   const Geom_traits& gt_;
   std::optional<Adjacency_tables> tables_;
   std::vector<std::uint32_t> merged_into_;
+  std::vector<FT> tolerances_;  // per point (`vertex_tolerance_map`), or empty: one tolerance
   Reconstruction_report report_;
 };
 
@@ -473,6 +505,14 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   Soup_reconstruction<Geom_traits, TriangleRange, ConcurrencyTag> steps(pts, triangles, input_index, gt);
   put_points(steps);
   FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
+  if constexpr(has_vertex_tolerance_map<NamedParameters>()) {
+    // Read once at the input index of every point (every point is its own input point here),
+    // checked; the exact weld keeps them with the points. The report's tolerance is the largest.
+    std::vector<FT> tolerances;
+    read_vertex_tolerances<FT>(np, steps.points().size(), tolerances, "reconstruct_topology");
+    eps = largest_tolerance(tolerances);
+    steps.set_vertex_tolerances(std::move(tolerances));
+  }
   std::optional<Gap_analysis> automatic;
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, internal_np::automatic_tolerance_t>::value) {
     if(choose_parameter(get_parameter(np, internal_np::automatic_tolerance), false)) {
@@ -639,6 +679,16 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 ///     soup is unchanged: the caller gives a tolerance by hand. Not with `snapping_tolerance` or
 ///     `relative_tolerance`. `geom_traits` then also needs `Segment_3`, `Construct_segment_3` and
 ///     `Compute_squared_distance_3`.} \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_tolerance_map} \cgalParamDescription{a tolerance per point instead of one:
+///     two vertices u and v are welded only when |uv| <= min(t_u, t_v), a vertex c is split into a
+///     border edge [a,b] only when its distance to it is <= min(t_c, t_a, t_b) (see `snap_vertices()`
+///     and `split_t_junctions()`); no point moves farther than its own tolerance. The map is read once,
+///     at the index of every element of `points`; exactly equal points take the smallest of their
+///     tolerances. `Reconstruction_report::tolerance` is then the largest tolerance of the map.
+///     `per_part_vertex_tolerances()` makes one from `analyze_gaps_per_part()`. Exclusive with
+///     `snapping_tolerance`, `relative_tolerance` and `automatic_tolerance`.} \cgalParamType{a
+///     `ReadablePropertyMap` from the index of a point (`std::size_t`) to a finite number >= 0
+///     convertible to `geom_traits::FT`} \cgalParamDefault{none: one tolerance} \cgalParamNEnd
 ///   \cgalParamNBegin{visitor} \cgalParamDescription{told every weld and every refused weld of every
 ///     round, with the indices of `points` (a point merged by the exact weld is known by the first
 ///     of the equal points). If it also has the member functions of `Default_split_visitor`, it is
@@ -662,7 +712,8 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// \cgalNamedParamsEnd
 /// \returns a `Reconstruction_report`.
 /// \throws Invalid_input on an index out of range, a face that is not a triangle, a repeated index
-///         in a face, a non-finite coordinate or an invalid tolerance, or when `automatic_tolerance(true)`
+///         in a face, a non-finite coordinate or an invalid tolerance (also in `vertex_tolerance_map`, or a
+///         map given with another tolerance parameter), or when `automatic_tolerance(true)`
 ///         finds no tolerance; `points` and `triangles` are unchanged then.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters,
@@ -740,10 +791,10 @@ Reconstruction_report reconstruct_topology(const PointRange& points, const Trian
 ///     then written for the new vertices} \cgalParamType{a model of `ReadWritePropertyMap` from
 ///     `boost::graph_traits<PolygonMesh>::vertex_descriptor` to a point of a CGAL kernel}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, mesh)`} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, visitor,
+///   \cgalParamNBegin{geom_traits, snapping_tolerance, relative_tolerance, vertex_tolerance_map, visitor,
 ///     maximum_number_of_rounds, do_split_t_junctions, small_features, count_self_intersections}
-///     \cgalParamDescription{as for the soup; the visitor's indices are those of the vertices in
-///     the order of `vertices(mesh)`} \cgalParamNEnd
+///     \cgalParamDescription{as for the soup; the visitor's indices and the keys of the tolerance map
+///     are those of the vertices in the order of `vertices(mesh)`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \returns a `Reconstruction_report`.
 /// \throws Invalid_input on a non-finite coordinate or an invalid tolerance; `mesh` is unchanged then.

@@ -50,7 +50,7 @@ struct Default_snap_visitor
 /// \brief what `snap_vertices()` did.
 struct Snap_report
 {
-  double tolerance = 0;                       ///< the absolute tolerance used
+  double tolerance = 0;                       ///< the absolute tolerance used (with `vertex_tolerance_map`: the largest of the map)
   std::size_t candidate_vertices = 0;         ///< vertices on border edges before the weld
   std::size_t merged_vertices = 0;            ///< vertices merged into a representative
   std::size_t clusters = 0;                   ///< representatives that received at least one vertex
@@ -174,6 +174,15 @@ class Snap_visitor_holder;
 ///   \cgalParamNBegin{relative_tolerance} \cgalParamDescription{the tolerance as a fraction of the
 ///     bounding-box diagonal; exclusive with `snapping_tolerance`} \cgalParamType{`double`}
 ///     \cgalParamDefault{none: `snapping_tolerance` applies} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_tolerance_map} \cgalParamDescription{a tolerance per point instead of
+///     one: two vertices u and v are within tolerance when |uv| <= min(t_u, t_v) (compared exactly,
+///     squared), and this pair rule replaces the one tolerance in every decision above (short edges,
+///     the tolerance graph, cluster members, collapsible pairs), so the decisions stay exact and
+///     independent of the order; a vertex moves by at most its own tolerance. The dense-cluster
+///     grid is not used with a map. Exclusive with `snapping_tolerance` and `relative_tolerance`.}
+///     \cgalParamType{a `ReadablePropertyMap` from the index of a point in `points` (`std::size_t`)
+///     to a finite number >= 0 convertible to `geom_traits::FT`} \cgalParamDefault{none: one
+///     tolerance} \cgalParamNEnd
 ///   \cgalParamNBegin{point_map} \cgalParamDescription{a property map giving the point of each element of
 ///     `points`} \cgalParamType{a readable property map to `Point_3`}
 ///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
@@ -189,7 +198,8 @@ class Snap_visitor_holder;
 ///     \cgalParamDefault{`Small_features::COLLAPSE`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 /// \returns a `Snap_report`.
-/// \throws Invalid_input for a negative, NaN or infinite tolerance, a non-finite coordinate,
+/// \throws Invalid_input for a negative, NaN or infinite tolerance (also in `vertex_tolerance_map`,
+///         or a map given with `snapping_tolerance` or `relative_tolerance`), a non-finite coordinate,
 ///         tables that do not match the soup, or `Small_features::COLLAPSE` with a triangle range
 ///         without `resize()`. Nothing is changed then.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
@@ -204,7 +214,13 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
   Visitor_holder visitor(np);
-  const FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np);
+  FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np);
+  // Per-vertex tolerances: every pair is decided with the smaller of its two; `eps`, the largest,
+  // bounds the searches.
+  std::vector<FT> tolerance_storage;
+  const std::vector<FT>* tolerances =
+    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "snap_vertices");
+  if(tolerances != nullptr) eps = internal::largest_tolerance(*tolerances);
   // Vertices that may receive welds but not move (`reconstruct_topology()` fixes the
   // representatives of earlier rounds, so that no point moves farther than the tolerance in all).
   const std::vector<char>* fixed = CGAL::parameters::choose_parameter(
@@ -220,7 +236,7 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   std::vector<typename NP_helper::Point> point_storage;
   const auto& point_vector = NP_helper::points_as_vector(points, np, point_storage);
   internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_vector, tables, eps, fixed, kernel,
-                                                                                  visitor.get(), policy);
+                                                                                  visitor.get(), policy, tolerances);
   return worker.template run<ConcurrencyTag>(triangles);
 }
 

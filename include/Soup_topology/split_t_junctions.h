@@ -28,7 +28,7 @@ namespace Soup_topology {
 /// \brief what `split_t_junctions()` did.
 struct Split_report
 {
-  double tolerance = 0;                   ///< the absolute tolerance used
+  double tolerance = 0;                   ///< the absolute tolerance used (with `vertex_tolerance_map`: the largest of the map)
   std::size_t t_junctions = 0;            ///< (border edge, vertex) pairs accepted as T-junctions
   std::size_t split_triangles = 0;        ///< splits done (each adds one triangle)
   std::size_t refused_overlap = 0;        ///< vertices whose border edge would overlap the split triangle
@@ -138,6 +138,14 @@ class T_junction_splitter;
 ///     \cgalParamNEnd
 ///   \cgalParamNBegin{relative_tolerance} \cgalParamDescription{the tolerance as a fraction of the
 ///     bounding-box diagonal; exclusive with `snapping_tolerance`} \cgalParamType{`double`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_tolerance_map} \cgalParamDescription{a tolerance per point instead of
+///     one: a vertex c is within tolerance of the segment [a,b] when its distance to it is
+///     <= min(t_c, t_a, t_b), and of the point a when |ca| <= min(t_c, t_a) (twice that for "twice
+///     the tolerance"); each decision above uses the tolerance of the points it involves, compared
+///     exactly, so the result stays independent of the order. The dense-cluster grid is not used with
+///     a map. Exclusive with `snapping_tolerance` and `relative_tolerance`.} \cgalParamType{a
+///     `ReadablePropertyMap` from the index of a point in `points` (`std::size_t`) to a finite number
+///     >= 0 convertible to `geom_traits::FT`} \cgalParamDefault{none: one tolerance} \cgalParamNEnd
 ///   \cgalParamNBegin{point_map} \cgalParamDescription{a property map associating points to the
 ///     elements of `points`} \cgalParamType{a readable property map to `Point_3`}
 ///     \cgalParamDefault{`CGAL::Identity_property_map`} \cgalParamNEnd
@@ -167,14 +175,20 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
                 "split_t_junctions: the visitor needs the member functions of Default_split_visitor");
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
-  const FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
+  FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
+  // Per-vertex tolerances: a vertex and a segment are decided with the smallest tolerance of the
+  // three points; `eps`, the largest, bounds the searches.
+  std::vector<FT> tolerance_storage;
+  const std::vector<FT>* tolerances =
+    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "split_t_junctions");
+  if(tolerances != nullptr) eps = internal::largest_tolerance(*tolerances);
   Visitor_given visitor = CGAL::parameters::choose_parameter<Visitor_given>(
     CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor));
   // The points, read once (a readable map may return them by value); a vector of points under
   // the identity map is used as it is.
   std::vector<typename NP_helper::Point> point_storage;
   internal::T_junction_splitter<Kernel, Split_report, typename Visitor_type::type> splitter(
-    NP_helper::points_as_vector(points, np, point_storage), tables, kernel, eps, Visitor_type::get(visitor));
+    NP_helper::points_as_vector(points, np, point_storage), tables, kernel, eps, Visitor_type::get(visitor), tolerances);
   const Split_report report = splitter.template run<ConcurrencyTag>();
   // Write the triangles back: the split ones and the new ones.
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {

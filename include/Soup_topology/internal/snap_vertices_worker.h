@@ -133,6 +133,14 @@ private:
 /// vertex still moves to a representative within the tolerance of it, so every point of a
 /// removed triangle moves by at most the tolerance. Without such a pair in the soup the
 /// decisions are those of `Small_features::REFUSE`.
+///
+/// With per-vertex tolerances (`vertex_tolerance_map`), every "within the tolerance" above is
+/// decided for the pair at hand, u and v, by the exact comparison of |uv|^2 with min(t_u, t_v)^2:
+/// the short edges, the same-triangle pairs, the rows of neighbours (and so the components and the
+/// members of a cluster), and the collapsible pairs. `eps_` is then the largest tolerance, the
+/// radius within which the octree lists the candidates before the pair rule filters them. Without
+/// a map `tolerances_` is null and each of these places takes the one-tolerance branch it took
+/// before (one pointer test per pair, outside the predicates).
 template <class Kernel, class Visitor>
 class Snap_vertices_worker
 {
@@ -152,11 +160,13 @@ public:
   /// \param kernel the traits object that takes every geometric decision
   /// \param visitor told of every merge and refusal
   /// \param policy what becomes of two vertices of one triangle within the tolerance
+  /// \param tolerances the tolerance of every point (checked), or `nullptr` for `eps` everywhere;
+  ///        `eps` is then their largest
   Snap_vertices_worker(const std::vector<Point>& points, Adjacency_tables& tables, const FT& eps,
                        const std::vector<char>* fixed, const Kernel& kernel, Visitor& visitor,
-                       Small_features policy = Small_features::REFUSE)
+                       Small_features policy = Small_features::REFUSE, const std::vector<FT>* tolerances = nullptr)
     : points_(points), tables_(tables), eps_(eps), fixed_(fixed), kernel_(kernel), visitor_(visitor),
-      collapse_(policy == Small_features::COLLAPSE)
+      collapse_(policy == Small_features::COLLAPSE), tolerances_(tolerances)
   {
     report_.tolerance = CGAL::to_double(eps);
     report_.border_edges_before = tables.number_of_border_edges();
@@ -187,6 +197,40 @@ private:
   const Point& point(size_type v) const { return points_[v]; }
   size_type final_vertex(size_type v) const { return target_[v] == none ? v : target_[v]; }
 
+  // With per-vertex tolerances: the squared tolerance of the pair (u, v), min(t_u, t_v)^2.
+  FT pair_eps2(size_type u, size_type v) const
+  {
+    const FT& e = smaller_tolerance((*tolerances_)[u], (*tolerances_)[v]);
+    return e * e;
+  }
+  // With per-vertex tolerances: `true` if u and v are within the tolerance of the pair. With
+  // double coordinates a squared distance far from the squared tolerance (computed in double,
+  // within a few ulps of the exact value) is decided without the exact predicate, as
+  // `count_short_edges()` does for one tolerance; otherwise `Compare_squared_distance_3` decides.
+  bool within_pair_tolerance(size_type u, size_type v) const
+  {
+    const FT e2 = pair_eps2(u, v);
+    const Point& p = point(u);
+    const Point& q = point(v);
+    if constexpr(std::is_same<FT, double>::value) {
+      const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      if(d2 > 1e-250 && e2 > 1e-250) {
+        if(d2 < e2 * (1 - 1e-12)) return true;
+        if(d2 > e2 * (1 + 1e-12)) return false;
+      }
+    }
+    return kernel_.compare_squared_distance_3_object()(p, q, e2) != CGAL::LARGER;
+  }
+  // The largest distance a corner of the triangle `tr` can move (in double): the tolerance, or
+  // with per-vertex tolerances the largest of its corners' (a vertex moves by at most its own).
+  double largest_move(const Adjacency_tables::Triangle& tr) const
+  {
+    if(tolerances_ == nullptr) return report_.tolerance;
+    return std::max({CGAL::to_double((*tolerances_)[tr[0]]), CGAL::to_double((*tolerances_)[tr[1]]),
+                     CGAL::to_double((*tolerances_)[tr[2]])});
+  }
+
   // Short edges: where the minimum feature separation is not met.
   void count_short_edges()
   {
@@ -200,8 +244,13 @@ private:
       for(int i = 0; i < 3; ++i) {
         const size_type u = tables_.neighbor(t, i);
         if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
-        const Point& p = point(tables_.vertex(t, i));
-        const Point& q = point(tables_.vertex(t, (i + 1) % 3));
+        const size_type pv = tables_.vertex(t, i), qv = tables_.vertex(t, (i + 1) % 3);
+        const Point& p = point(pv);
+        const Point& q = point(qv);
+        if(tolerances_ != nullptr) {
+          if(within_pair_tolerance(pv, qv)) ++report_.short_edges;
+          continue;
+        }
         if constexpr(double_coordinates) {
           const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
           const double d2 = dx * dx + dy * dy + dz * dz;
@@ -257,8 +306,11 @@ private:
     tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
     find_same_triangle_pairs();
     components_.reset(n);
-    // The grid's cells are counted first and the grid built only for a dense cluster.
-    dense_ = largest_tolerance_cell(candidate_points_, eps_) > dense_cell_size;
+    // The grid's cells are counted first and the grid built only for a dense cluster. The grid
+    // joins whole cells and two cells by their nearest pair, which is right for one tolerance
+    // only: with per-vertex tolerances it is not used (every pair is listed by the self-join and
+    // decided by the pair rule).
+    dense_ = tolerances_ == nullptr && largest_tolerance_cell(candidate_points_, eps_) > dense_cell_size;
     if(dense_)
       Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
     else
@@ -278,7 +330,8 @@ private:
       for(int i = 0; i < 3; ++i) {
         const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
         if(a == not_candidate || b == not_candidate) continue;
-        if(compare_sq(candidate_points_[a], candidate_points_[b], eps2) != CGAL::LARGER)
+        if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
+                                  : compare_sq(candidate_points_[a], candidate_points_[b], eps2) != CGAL::LARGER)
           same_triangle_pairs_.emplace_back(std::min(a, b), std::max(a, b));
       }
     const Octree<Kernel>& tree = *tree_;
@@ -308,6 +361,8 @@ private:
       row_start_[c] = row_.size();
       for(std::size_t d : found) {
         if(d == c) continue;
+        // The octree lists the candidates within the largest tolerance; the pair rule decides.
+        if(tolerances_ != nullptr && !within_pair_tolerance(candidates_[c], candidates_[d])) continue;
         components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
         if(collapse_ || !mate[candidates_[d]]) row_.push_back(static_cast<std::uint32_t>(d));
       }
@@ -509,6 +564,10 @@ private:
     const FT eps2 = eps_ * eps_;
     for(size_type w : tables_.triangle(t)) {
       if(w == mv || (w != rep_v && target_[w] != rep_v)) continue;
+      if(tolerances_ != nullptr) {
+        if(!within_pair_tolerance(mv, w)) return false;
+        continue;
+      }
       if(compare_sq(point(mv), point(w), eps2) == CGAL::LARGER) return false;
     }
     return true;
@@ -629,7 +688,7 @@ private:
       // Two corners merged: the triangle is removed, nothing of it to keep.
       if(n0 == n1 || n1 == n2 || n2 == n0) return;
       Refusal_reason why = Refusal_reason::FLIP;
-      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), report_.tolerance)) return;
+      if(fat_enough_for_moves(point(tr[0]), point(tr[1]), point(tr[2]), largest_move(tr))) return;
       if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
         return;
       for(size_type v : tr)
@@ -818,6 +877,7 @@ private:
   const Kernel kernel_;
   Visitor& visitor_;
   const bool collapse_;                                 // Small_features::COLLAPSE
+  const std::vector<FT>* tolerances_;                   // per point, or null: eps_ for every pair
   Snap_report report_;
   // Candidates and the tolerance graph over them (local ids).
   std::vector<size_type> candidates_;

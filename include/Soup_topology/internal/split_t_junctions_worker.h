@@ -59,10 +59,13 @@ public:
   using size_type = Adjacency_tables::size_type;
 
   /// `points` all points of the soup, `eps` the (checked) absolute tolerance, `visitor` told of
-  /// each split, refusal and ambiguous vertex.
+  /// each split, refusal and ambiguous vertex. `tolerances`, if not null, holds the (checked)
+  /// tolerance of every point, and `eps` is their largest: each decision then takes the smallest
+  /// tolerance of the points it involves (`pair_eps2()`, `triple_eps2()`), and `eps` only bounds
+  /// the searches of the octree, whose answers are filtered by that rule.
   T_junction_splitter(const std::vector<Point>& points, Adjacency_tables& tables, const Kernel& kernel, const FT& eps,
-                      Visitor& visitor)
-    : points_(points), tables_(tables), visitor_(visitor), kernel_(kernel), eps_(eps), eps2_(eps * eps),
+                      Visitor& visitor, const std::vector<FT>* tolerances = nullptr)
+    : points_(points), tables_(tables), visitor_(visitor), kernel_(kernel), tolerances_(tolerances), eps_(eps), eps2_(eps * eps),
       four_eps2_(4 * eps2_), eps2d_(CGAL::to_double(eps2_)),
       compare_sq_(kernel.compare_squared_distance_3_object()),
       compare_distance_(kernel.compare_distance_3_object()), less_xyz_(kernel.less_xyz_3_object()),
@@ -106,6 +109,14 @@ private:
   // decide (it is slow on the tiny segments of a dense cluster and on collinear points).
   bool near_segment(size_type v, size_type a, size_type b) const
   {
+    if(tolerances_ != nullptr) {
+      const FT e2 = triple_eps2(v, a, b);
+      const double e2d = CGAL::to_double(e2);
+      if(surely_within(point(v), point(a), e2d) || surely_within(point(v), point(b), e2d) ||
+         surely_within_segment(point(v), point(a), point(b), e2d))
+        return true;
+      return compare_sq_(point(v), segment_(point(a), point(b)), e2) != CGAL::LARGER;
+    }
     if(surely_within(point(v), point(a), eps2d_) || surely_within(point(v), point(b), eps2d_) ||
        surely_within_segment(point(v), point(a), point(b), eps2d_))
       return true;
@@ -113,11 +124,31 @@ private:
   }
   bool near_vertex(size_type v, size_type a) const
   {
+    if(tolerances_ != nullptr) {
+      const FT e2 = pair_eps2(v, a);
+      return surely_within(point(v), point(a), CGAL::to_double(e2)) || compare_sq_(point(v), point(a), e2) != CGAL::LARGER;
+    }
     return surely_within(point(v), point(a), eps2d_) || compare_sq_(point(v), point(a), eps2_) != CGAL::LARGER;
   }
   bool within_twice_the_tolerance(size_type v, size_type a) const
   {
+    if(tolerances_ != nullptr) {
+      const FT e2 = 4 * pair_eps2(v, a);
+      return surely_within(point(v), point(a), CGAL::to_double(e2)) || compare_sq_(point(v), point(a), e2) != CGAL::LARGER;
+    }
     return surely_within(point(v), point(a), 4 * eps2d_) || compare_sq_(point(v), point(a), four_eps2_) != CGAL::LARGER;
+  }
+  // With per-vertex tolerances: the squared tolerance of the pair (u, v), min(t_u, t_v)^2, and
+  // of a vertex and a segment (v; a, b), min(t_v, t_a, t_b)^2.
+  FT pair_eps2(size_type u, size_type v) const
+  {
+    const FT& e = smaller_tolerance((*tolerances_)[u], (*tolerances_)[v]);
+    return e * e;
+  }
+  FT triple_eps2(size_type v, size_type a, size_type b) const
+  {
+    const FT& e = smaller_tolerance((*tolerances_)[v], smaller_tolerance((*tolerances_)[a], (*tolerances_)[b]));
+    return e * e;
   }
   bool share_triangle(size_type u, size_type v) const
   {
@@ -142,8 +173,10 @@ private:
     border_points_.reserve(border_vertices_.size());
     for(size_type v : border_vertices_) border_points_.push_back(point(v));
     tree_.emplace(border_points_, CGAL::Identity_property_map<Point>(), Tree_traits(kernel_));
-    // The cells are counted first; the grid itself is built only for a dense cluster.
-    dense_ = largest_tolerance_cell(border_points_, eps_) > dense_cell_size;
+    // The cells are counted first; the grid itself is built only for a dense cluster. The grid
+    // skips the cells within the tolerance of an end point, which is right for one tolerance only:
+    // with per-vertex tolerances it is not used (the octree lists the vertices, the rule decides).
+    dense_ = tolerances_ == nullptr && largest_tolerance_cell(border_points_, eps_) > dense_cell_size;
     if(dense_) {
       grid_.emplace(border_points_, eps_, kernel_);
       border_index_.assign(points_.size(), not_border);
@@ -228,6 +261,12 @@ private:
     const Segment_query_strategy strategy = length2 > 64 * eps2d_ ? Segment_query_strategy::NEIGHBORHOOD_CULLING
                                                                  : tree_->segment_query_strategy();
     tree_->vertices_near_segment(point(a), point(b), eps_, std::back_inserter(found), strategy);
+    // Per-vertex tolerances: the octree lists the vertices within the largest tolerance; the
+    // rule of the vertex and the segment keeps those within their own.
+    if(tolerances_ != nullptr)
+      found.erase(std::remove_if(found.begin(), found.end(),
+                                 [&](std::size_t f) { return !near_segment(border_vertices_[f], a, b); }),
+                  found.end());
   }
 
   // Decides whether vertex `c`, near border edge `k`, is a T-junction of it (a claim), a vertex
@@ -432,6 +471,7 @@ private:
   Adjacency_tables& tables_;
   Visitor& visitor_;
   const Kernel kernel_;
+  const std::vector<FT>* tolerances_; // per point, or null: eps_ for every decision
   const FT eps_, eps2_, four_eps2_;
   const double eps2d_;
   typename Kernel::Compare_squared_distance_3 compare_sq_;

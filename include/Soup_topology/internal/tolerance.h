@@ -19,6 +19,8 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/number_utils.h>
 
+#include <boost/property_map/property_map.hpp>
+
 #include <algorithm>
 #include <functional>
 #include <cmath>
@@ -101,6 +103,114 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
   } else {
     return FT(0);
   }
+}
+
+/// whether `np` holds a `vertex_tolerance_map`.
+template <class NamedParameters>
+constexpr bool has_vertex_tolerance_map()
+{
+  return !CGAL::parameters::is_default_parameter<NamedParameters, internal_np::vertex_tolerance_map_t>::value;
+}
+
+/// The per-vertex tolerances that `reconstruct_topology()` hands to `snap_vertices()` and
+/// `split_t_junctions()` in every round: a readable property map over a vector that was read and
+/// checked once, which those functions then use as it is (no copy, no second check).
+template <class FT>
+struct Vertex_tolerance_vector
+{
+  using key_type = std::size_t;
+  using value_type = FT;
+  using reference = const FT&;
+  using category = boost::readable_property_map_tag;
+  const std::vector<FT>* values = nullptr;
+  friend reference get(const Vertex_tolerance_vector& map, std::size_t i) { return (*map.values)[i]; }
+};
+
+/// \throws Invalid_input if `np` gives a `vertex_tolerance_map` together with `snapping_tolerance`,
+/// `relative_tolerance` or `automatic_tolerance(true)`: the map gives every tolerance.
+template <class NamedParameters>
+void check_vertex_tolerance_map_alone(const NamedParameters& np, const char* function)
+{
+  using CGAL::parameters::is_default_parameter;
+  if constexpr(has_vertex_tolerance_map<NamedParameters>()) {
+    constexpr bool has_absolute = !is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value;
+    constexpr bool has_relative = !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value;
+    if(has_absolute || has_relative)
+      throw Invalid_input(std::string(function) + ": vertex_tolerance_map gives the tolerance of every point: give no "
+                          "snapping_tolerance or relative_tolerance with it");
+    if constexpr(!is_default_parameter<NamedParameters, internal_np::automatic_tolerance_t>::value)
+      if(CGAL::parameters::choose_parameter(CGAL::parameters::get_parameter(np, internal_np::automatic_tolerance), false))
+        throw Invalid_input(std::string(function) + ": vertex_tolerance_map gives the tolerance of every point: "
+                            "automatic_tolerance(true) cannot be given with it");
+  } else {
+    (void)np; (void)function;
+  }
+}
+
+/// the tolerance `value` of point `i` of a `vertex_tolerance_map`, checked as `resolve_tolerance()`
+/// checks one tolerance. \throws Invalid_input if it is negative, NaN, infinite or too large.
+template <class FT, class Value>
+FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* function)
+{
+  const double e = CGAL::to_double(value);
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", x);
+    return std::string(buffer);
+  };
+  if(!(e >= 0) || !std::isfinite(e))
+    throw Invalid_input(std::string(function) + ": the tolerance of point " + std::to_string(i) +
+                        " (vertex_tolerance_map) must be a finite number >= 0 (got " + text(e) + ")");
+  if(!std::isfinite(4 * e * e))
+    throw Invalid_input(std::string(function) + ": the tolerance of point " + std::to_string(i) +
+                        " (vertex_tolerance_map) is too large (" + text(e) +
+                        "): the square of twice its value overflows a double");
+  return FT(value);
+}
+
+/// the tolerances of the points 0, ..., n - 1 given by the `vertex_tolerance_map` of `np`, or
+/// `nullptr` when `np` has none (one tolerance for all). They are read once and checked into
+/// `storage`, unless the map is a `Vertex_tolerance_vector` of `n` values (the pipeline's,
+/// already checked), which is used as it is.
+/// \throws Invalid_input for a bad value, or for a map given with another tolerance parameter.
+template <class FT, class NamedParameters>
+const std::vector<FT>* read_vertex_tolerances(const NamedParameters& np, std::size_t n, std::vector<FT>& storage,
+                                              const char* function)
+{
+  if constexpr(has_vertex_tolerance_map<NamedParameters>()) {
+    check_vertex_tolerance_map_alone(np, function);
+    const auto map = CGAL::parameters::get_parameter(np, internal_np::vertex_tolerance_map);
+    if constexpr(std::is_same<std::decay_t<decltype(map)>, Vertex_tolerance_vector<FT>>::value) {
+      if(map.values->size() != n)
+        throw Invalid_input(std::string(function) + ": the vertex tolerances do not match the points");
+      return map.values;
+    } else {
+      storage.clear();
+      storage.reserve(n);
+      for(std::size_t i = 0; i < n; ++i) storage.push_back(checked_vertex_tolerance<FT>(get(map, i), i, function));
+      return &storage;
+    }
+  } else {
+    (void)np; (void)n; (void)storage; (void)function;
+    return nullptr;
+  }
+}
+
+/// the largest of `tolerances` (0 when empty).
+template <class FT>
+FT largest_tolerance(const std::vector<FT>& tolerances)
+{
+  FT largest(0);
+  for(const FT& t : tolerances)
+    if(largest < t) largest = t;
+  return largest;
+}
+
+/// the smaller of two tolerances (the rule of a pair under a `vertex_tolerance_map`).
+template <class FT>
+const FT& smaller_tolerance(const FT& a, const FT& b)
+{
+  return b < a ? b : a;
 }
 
 /// the visitor of a `visitor` named parameter given as `Given`: `Given` itself (held by copy), or
