@@ -128,7 +128,7 @@ namespace internal {
 /// as a pipeline keeps them up to date; they are read, not changed). The result (points,
 /// triangles, report) is the same as without them: only the construction of the tables is saved
 /// (they are built again, once, only if repeated triangles are left out).
-/// 	hrows Invalid_input as `orient_triangle_soup()`, or if the tables do not have as many
+/// \throws Invalid_input as `orient_triangle_soup()`, or if the tables do not have as many
 ///         triangles and vertices as the soup
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters>
