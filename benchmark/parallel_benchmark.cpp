@@ -20,7 +20,8 @@
 // The jittered and the T-junction soups are also repaired "step by step": the steps of the first
 // round of reconstruct_topology (Adjacency_tables, snap_vertices, split_t_junctions,
 // orient_triangle_soup) called one by one and timed each, so that every step has its speedup and
-// serial fraction.
+// serial fraction; the orientation twice: building its own tables (orient_triangle_soup) and
+// reading the tables of the round (as the pipeline holds them), with the same result.
 // Every parallel result is compared with the 1-thread result (points and triangles): a
 // difference is printed and makes the exit code 1.
 //
@@ -155,7 +156,8 @@ struct Round_of_steps
 
 // One round of the steps that `reconstruct_topology()` repeats, called one by one on an indexed
 // soup: the tables, the weld, the T-junction split, the orientation (with the pipeline's default
-// small-feature policy, so the same work as its first round).
+// small-feature policy, so the same work as its first round), the last without and with the
+// round's tables.
 Round_of_steps run_steps(const std::vector<Point>& points, const std::vector<Triangle>& triangles, double tolerance)
 {
   Round_of_steps r{points, triangles, {}};
@@ -166,7 +168,16 @@ Round_of_steps run_steps(const std::vector<Point>& points, const std::vector<Tri
   }));
   r.seconds.push_back(timed([&] { ST::snap_vertices<Parallel>(r.points, r.triangles, *tables, np); }));
   r.seconds.push_back(timed([&] { ST::split_t_junctions<Parallel>(r.points, r.triangles, *tables, np); }));
-  r.seconds.push_back(timed([&] { ST::orient_triangle_soup<Parallel>(r.points, r.triangles); }));
+  // the orientation as a caller without tables runs it (it builds its own), on a copy ...
+  std::vector<Point> oriented_points = r.points;
+  std::vector<Triangle> oriented_triangles = r.triangles;
+  r.seconds.push_back(timed([&] { ST::orient_triangle_soup<Parallel>(oriented_points, oriented_triangles); }));
+  // ... and with the tables of the round, as the pipeline holds them
+  r.seconds.push_back(timed([&] { ST::internal::orient_triangle_soup_with_tables<Parallel>(r.points, r.triangles, tables.get()); }));
+  if(oriented_points != r.points || oriented_triangles != r.triangles) {
+    std::printf("the orientation with the round's tables differs from the orientation without them\n");
+    identical = false;
+  }
   return r;
 }
 
@@ -182,7 +193,8 @@ void measure_steps(const std::string& name, std::size_t threads, const std::vect
     std::printf("%s: the parallel steps differ from the 1-thread steps\n", name.c_str());
     identical = false;
   }
-  const char* const steps[] = {"Adjacency_tables", "snap_vertices", "split_t_junctions", "orient_triangle_soup"};
+  const char* const steps[] = {"Adjacency_tables", "snap_vertices", "split_t_junctions", "orient_triangle_soup",
+                               "orientation, the round's tables"};
   for(std::size_t i = 0; i < one.seconds.size(); ++i) {
     rows.push_back(Row{name + ": " + steps[i], one.seconds[i], all.seconds[i]});
     print_row(rows.back(), threads);

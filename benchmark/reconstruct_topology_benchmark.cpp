@@ -15,6 +15,8 @@
 //
 // Benchmarks (CPU time):
 // - BM_ours_in_place: Soup_topology::reconstruct_topology(points, triangles, np);
+// - BM_ours_in_place_oriented: the same, then orient_triangle_soup(points, triangles) (the soup
+//   the command line writes); "orient_ms" counter;
 // - BM_ours_to_mesh: reconstruct_topology(points, triangles, mesh, np) into a Surface_mesh;
 // - BM_CGAL_pipeline: PMP::repair_polygon_soup, orient_polygon_soup, polygon_soup_to_polygon_mesh,
 //   experimental::snap_borders (constant tolerance), stitch_borders; "*_ms" counters per phase.
@@ -30,6 +32,7 @@
 // Run: reconstruct_topology_benchmark [--benchmark_filter=...]; data from SOUP_TOPOLOGY_DATA_DIR.
 
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
 
@@ -155,6 +158,30 @@ void BM_ours_in_place(benchmark::State& state, Size size, Jitter jitter)
   }
   set_input_counters(state, in);
   report_counters(state, report);
+}
+
+// The soup the command line writes: repaired in place, then oriented (repeated triangles left
+// out, patches oriented, non-manifold vertices separated), the counterpart of CGAL's repair and
+// orientation without the mesh; "orient_ms" is the orientation's share.
+void BM_ours_in_place_oriented(benchmark::State& state, Size size, Jitter jitter)
+{
+  const Input& in = input(size, jitter);
+  ST::Reconstruction_report report;
+  double orient_ms = 0;
+  for(auto _ : state) {
+    state.PauseTiming();
+    std::vector<Point> points = in.points;
+    std::vector<Index_triangle> triangles = in.triangles;
+    state.ResumeTiming();
+    report = ST::reconstruct_topology(points, triangles, CGAL::parameters::snapping_tolerance(in.tolerance));
+    const double t0 = thread_cpu_ms();
+    ST::orient_triangle_soup(points, triangles);
+    orient_ms = thread_cpu_ms() - t0;
+    benchmark::DoNotOptimize(triangles.data());
+  }
+  set_input_counters(state, in);
+  report_counters(state, report);
+  state.counters["orient_ms"] = orient_ms;
 }
 
 void BM_ours_to_mesh(benchmark::State& state, Size size, Jitter jitter)
@@ -355,6 +382,7 @@ BENCHMARK(BM_read_and_reconstruct_given_STL)->Unit(benchmark::kMillisecond)->Ite
     ->Unit(benchmark::kMillisecond)->Iterations(iterations)
 
 SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_ours_in_place, 2);
+SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_ours_in_place_oriented, 2);
 SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_ours_to_mesh, 2);
 SOUP_TOPOLOGY_RECONSTRUCT_BENCHMARKS(BM_CGAL_pipeline, 1);
 

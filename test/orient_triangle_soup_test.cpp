@@ -9,8 +9,11 @@
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
 
+#include "soup_generators.h"
 #include "test_utilities.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -27,6 +30,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <ctime>
 #include <limits>
 #include <map>
@@ -512,6 +517,194 @@ TEST(OrientTriangleSoup, NonManifoldPiecesAreSeparatedIntoValidMeshes)
   ST::triangle_soup_to_face_graph(m.points, m.triangles, strip);
   EXPECT_TRUE(CGAL::is_valid_polygon_mesh(strip));
   EXPECT_EQ(num_faces(strip), 24u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The orientation with the tables at hand (a pipeline's), and its results pinned: the values
+// below are those of the orientation before it read repeated triangles and fans from the tables
+// (an open-addressing hash of every triangle, a search of the fans of every vertex).
+
+// A 64-bit FNV-1a fingerprint of an oriented soup: the bits of the coordinates, the triangles in
+// their order and the report.
+std::uint64_t fingerprint(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
+                          const ST::Orientation_report& r)
+{
+  std::uint64_t h = 1469598103934665603ULL;
+  auto add = [&](std::uint64_t x) {
+    for(int i = 0; i < 8; ++i) {
+      h ^= (x >> (8 * i)) & 0xff;
+      h *= 1099511628211ULL;
+    }
+  };
+  add(points.size());
+  add(triangles.size());
+  for(const Point& p : points)
+    for(int i = 0; i < 3; ++i) {
+      const double c = p[i];
+      std::uint64_t b;
+      std::memcpy(&b, &c, sizeof b);
+      add(b);
+    }
+  for(const Triangle& t : triangles)
+    for(std::size_t v : t) add(v);
+  add(r.duplicate_triangles);
+  add(r.orientation_flips);
+  add(r.duplicated_points);
+  return h;
+}
+
+// A deterministic scramble (a xorshift generator, no library distribution): every triangle
+// rotated, a third of them reversed, one in 40 repeated (in either orientation), one in 200
+// three more times (in both), then all shuffled.
+std::vector<Triangle> scrambled(const std::vector<Triangle>& triangles, std::uint64_t seed)
+{
+  std::uint64_t x = seed * 0x9e3779b97f4a7c15ULL + 1;
+  auto next = [&] {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  std::vector<Triangle> out;
+  for(const Triangle& t0 : triangles) {
+    Triangle t = t0;
+    std::rotate(t.begin(), t.begin() + std::ptrdiff_t(next() % 3), t.end());
+    if(next() % 3 == 0) std::swap(t[1], t[2]);
+    out.push_back(t);
+    if(next() % 40 == 0) out.push_back(next() % 2 ? t : Triangle{t[0], t[2], t[1]});
+    if(next() % 200 == 0)
+      for(int k = 0; k < 3; ++k) out.push_back(k % 2 ? t : Triangle{t[0], t[2], t[1]});
+  }
+  for(std::size_t i = out.size(); i > 1; --i) std::swap(out[i - 1], out[next() % i]);
+  return out;
+}
+
+// The soups whose orientation is pinned: three real meshes as read (the pig has non-manifold
+// vertices), bunny00 cut into 8 patches with T-junctions and repaired, and each scrambled.
+std::vector<std::pair<std::string, Soup>> pinned_soups()
+{
+  std::vector<std::pair<std::string, Soup>> soups;
+  for(const char* file : {"cgal_repair/pig.stl.xz", "cad/ALSTOM_TEST4.off", "clean/elephant.off"}) {
+    Soup s;
+    soup_test::read_data_mesh(file, s.points, s.triangles);
+    soups.emplace_back(file, s);
+  }
+  Soup bunny;
+  soup_test::read_data_mesh("clean/bunny00.off.xz", bunny.points, bunny.triangles);
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for(const Point& q : bunny.points)
+    for(int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], q[i]);
+      hi[i] = std::max(hi[i], q[i]);
+    }
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const auto generated = soup_test::t_junction_soup(bunny.points, bunny.triangles, 8, 1e-7 * diag, 17);
+  Soup repaired;
+  repaired.points = generated.points;
+  repaired.triangles = generated.triangles;
+  ST::reconstruct_topology(repaired.points, repaired.triangles, CGAL::parameters::snapping_tolerance(1e-6 * diag));
+  soups.emplace_back("bunny00 T-junction soup, repaired", repaired);
+  const std::size_t number_of_sources = soups.size();
+  for(std::size_t k = 0; k < number_of_sources; ++k) {
+    Soup s;
+    s.points = soups[k].second.points;
+    s.triangles = scrambled(soups[k].second.triangles, k + 1 == number_of_sources ? 9 : 5);
+    soups.emplace_back(soups[k].first + ", scrambled", s);
+  }
+  return soups;
+}
+
+TEST(OrientTriangleSoup, PinnedOnRealMeshesWithAndWithoutTheirTables)
+{
+  // per soup of pinned_soups(), per policy (BOUND_VOLUME, KEEP_INPUT, OUTWARD): the report and the fingerprint
+  struct Pinned
+  {
+    std::size_t duplicate_triangles, orientation_flips, duplicated_points;
+    std::uint64_t fingerprint;
+  };
+  const Pinned pinned[][3] = {
+    // cgal_repair/pig.stl.xz
+    {{0, 0, 443, 0x51cc3bfc3dca99ccULL}, {0, 0, 443, 0x51cc3bfc3dca99ccULL}, {0, 0, 443, 0x51cc3bfc3dca99ccULL}},
+    // cad/ALSTOM_TEST4.off
+    {{0, 0, 0, 0xc2ab8807c7267a25ULL}, {0, 0, 0, 0xc2ab8807c7267a25ULL}, {0, 0, 0, 0xc2ab8807c7267a25ULL}},
+    // clean/elephant.off
+    {{0, 0, 0, 0x972e9cc310c4f3f0ULL}, {0, 0, 0, 0x972e9cc310c4f3f0ULL}, {0, 0, 0, 0x972e9cc310c4f3f0ULL}},
+    // t_junction repaired
+    {{0, 0, 0, 0x87cff6fd4658fd6fULL}, {0, 0, 0, 0x87cff6fd4658fd6fULL}, {0, 0, 0, 0x87cff6fd4658fd6fULL}},
+    // cgal_repair/pig.stl.xz, scrambled
+    {{690, 5598, 443, 0x736711394fbec0fdULL}, {690, 5598, 443, 0x736711394fbec0fdULL}, {690, 5598, 443, 0x736711394fbec0fdULL}},
+    // cad/ALSTOM_TEST4.off, scrambled
+    {{78, 666, 0, 0x0daf34490ec89357ULL}, {78, 666, 0, 0x0daf34490ec89357ULL}, {78, 666, 0, 0x0daf34490ec89357ULL}},
+    // clean/elephant.off, scrambled
+    {{219, 1888, 0, 0x2b68c475dccde962ULL}, {219, 1888, 0, 0x2b68c475dccde962ULL}, {219, 1888, 0, 0x2b68c475dccde962ULL}},
+    // t_junction repaired, scrambled
+    {{3214, 26352, 0, 0xb1435c43aa1b3aabULL}, {3214, 26352, 0, 0xb1435c43aa1b3aabULL}, {3214, 26352, 0, 0xb1435c43aa1b3aabULL}},
+  };
+  const ST::Orientation_policy policies[] = {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT,
+                                             ST::Orientation_policy::OUTWARD};
+  const std::vector<std::pair<std::string, Soup>> soups = pinned_soups();
+  ASSERT_EQ(soups.size(), sizeof pinned / sizeof pinned[0]);
+  for(std::size_t k = 0; k < soups.size(); ++k)
+    for(int i = 0; i < 3; ++i) {
+      SCOPED_TRACE(soups[k].first + ", policy " + std::to_string(i));
+      const Pinned& expected = pinned[k][i];
+      const auto np = ST::parameters::orientation_policy(policies[i]);
+      std::vector<Point> p = soups[k].second.points;
+      std::vector<Triangle> t = soups[k].second.triangles;
+      const ST::Orientation_report r = ST::orient_triangle_soup(p, t, np);
+      EXPECT_EQ(r.duplicate_triangles, expected.duplicate_triangles);
+      EXPECT_EQ(r.orientation_flips, expected.orientation_flips);
+      EXPECT_EQ(r.duplicated_points, expected.duplicated_points);
+      EXPECT_EQ(fingerprint(p, t, r), expected.fingerprint);
+      // the same with the tables of the soup given (they are not changed)
+      std::vector<Point> q = soups[k].second.points;
+      std::vector<Triangle> u = soups[k].second.triangles;
+      const ST::Adjacency_tables tables(u, q.size());
+      const std::vector<ST::Adjacency_tables::Triangle> before = tables.triangles();
+      const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables(q, u, &tables, np);
+      EXPECT_EQ(fingerprint(q, u, w), expected.fingerprint);
+      EXPECT_EQ(tables.triangles(), before);
+      // oriented again, nothing changes
+      const ST::Orientation_report again = ST::orient_triangle_soup(q, u, np);
+      EXPECT_EQ(again.duplicate_triangles + again.orientation_flips + again.duplicated_points, 0u);
+      EXPECT_EQ(u, t);
+      EXPECT_EQ(q.size(), p.size());
+    }
+}
+
+TEST(OrientTriangleSoup, WithThePipelinesTablesAsWithoutThem)
+{
+  // The tables as the pipeline holds them after a round: built, then updated in place by the
+  // weld and the splits (rows with room to grow, triangles appended). The orientation that reads
+  // them gives what the orientation that builds its own gives, in every order of the triangles.
+  Soup bunny;
+  soup_test::read_data_mesh("clean/bunny00.off.xz", bunny.points, bunny.triangles);
+  const auto generated = soup_test::t_junction_soup(bunny.points, bunny.triangles, 6, 1e-7, 3);
+  const auto np = ST::parameters::small_features(ST::Small_features::COLLAPSE, CGAL::parameters::snapping_tolerance(1e-5));
+  for(int order = 0; order < 3; ++order) {
+    SCOPED_TRACE("order " + std::to_string(order));
+    std::vector<Point> p = generated.points;
+    std::vector<Triangle> t = order == 0 ? generated.triangles : scrambled(generated.triangles, 100 + order);
+    ST::Adjacency_tables tables(t, p.size());
+    const ST::Snap_report snap = ST::snap_vertices(p, t, tables, np);
+    const ST::Split_report split = ST::split_t_junctions(p, t, tables, np);
+    ASSERT_GT(snap.merged_vertices, 0u);
+    ASSERT_GT(split.split_triangles, 0u);
+    std::vector<Point> q = p;
+    std::vector<Triangle> u = t;
+    const ST::Orientation_report expected = ST::orient_triangle_soup(q, u);
+    const ST::Orientation_report r = ST::internal::orient_triangle_soup_with_tables(p, t, &tables);
+    EXPECT_EQ(fingerprint(p, t, r), fingerprint(q, u, expected));
+    if(order > 0) {
+      EXPECT_GT(r.duplicate_triangles, 0u);
+    }
+  }
+  // tables of another soup are refused
+  std::vector<Point> p = generated.points;
+  std::vector<Triangle> t = generated.triangles;
+  const ST::Adjacency_tables other(std::vector<Triangle>(t.begin(), t.end() - 1), p.size());
+  EXPECT_THROW(ST::internal::orient_triangle_soup_with_tables(p, t, &other), ST::Invalid_input);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -248,6 +248,15 @@ TEST_P(ParallelRealMesh, OrientTriangleSoup)
                 std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
       EXPECT_EQ(bits(p), bits(ep));
       EXPECT_EQ(t, et);
+      // with the tables of the soup at hand
+      auto q = m.points;
+      auto u = m.triangles;
+      const ST::Adjacency_tables tables(u, q.size(), Parallel());
+      const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables);
+      EXPECT_EQ(std::make_tuple(w.duplicate_triangles, w.orientation_flips, w.duplicated_points),
+                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
+      EXPECT_EQ(bits(q), bits(ep));
+      EXPECT_EQ(u, et);
     });
   }
 }
@@ -428,6 +437,90 @@ TEST(ParallelRobustnessSoup, SubdividedTJunctionSoupOverManyBlocks)
     EXPECT_EQ(bits(p), bits(ep));
     EXPECT_EQ(t, et);
   });
+}
+
+/// `triangles` with some repeated (in both orientations, some three times more), some reversed,
+/// every triangle rotated, all shuffled.
+std::vector<Triangle> with_repeats_and_reversals(const std::vector<Triangle>& triangles, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::vector<Triangle> out;
+  for(Triangle t : triangles) {
+    if(rng() % 3 == 0) std::swap(t[1], t[2]);
+    out.push_back(t);
+    if(rng() % 40 == 0) out.push_back(rng() % 2 ? t : Triangle{t[0], t[2], t[1]});
+    if(rng() % 200 == 0)
+      for(int k = 0; k < 3; ++k) out.push_back(k % 2 ? t : Triangle{t[0], t[2], t[1]});
+  }
+  shuffle_triangles(out, seed + 1);
+  return out;
+}
+
+TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
+{
+  // A soup large enough for many blocks of triangles and of vertices: the repaired T-junction
+  // soup of the elephant split twice, with repeated and reversed triangles; beside it 40 shells
+  // of the elephant in pairs, one scaled by half about the centroid (mostly inside the other),
+  // each reversed at random, and
+  // 3,000 loose triangles (patches of their own): many closed patches whose volumes and nesting
+  // depths are computed per patch, many open ones. Every thread count gives the sequential
+  // result, with and without the tables at hand.
+  Mesh_data m = load("clean/elephant.off");
+  const Mesh_data shell = m;
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  auto soup = soup_test::t_junction_soup(m.points, m.triangles, 8, 1e-7 * diagonal(m.points) / std::sqrt(3.0), 5);
+  ST::reconstruct_topology(soup.points, soup.triangles, CGAL::parameters::snapping_tolerance(1e-6 * diagonal(soup.points)));
+  std::vector<Point> points = soup.points;
+  std::vector<Triangle> triangles = with_repeats_and_reversals(soup.triangles, 31);
+  std::mt19937 rng(37);
+  const double d = diagonal(shell.points);
+  double c[3] = {0, 0, 0};
+  for(const Point& p : shell.points)
+    for(int i = 0; i < 3; ++i) c[i] += p[i] / double(shell.points.size());
+  for(int k = 0; k < 40; ++k) {
+    const double scale = k % 2 ? 0.5 : 1.0, dx = 2 * d * (k / 2 + 1);
+    const std::size_t offset = points.size();
+    for(const Point& p : shell.points)
+      points.emplace_back(c[0] + scale * (p.x() - c[0]) + dx, c[1] + scale * (p.y() - c[1]), c[2] + scale * (p.z() - c[2]));
+    const bool reverse = rng() % 2 != 0;
+    for(const Triangle& t : shell.triangles)
+      triangles.push_back(reverse ? Triangle{t[0] + offset, t[2] + offset, t[1] + offset}
+                                  : Triangle{t[0] + offset, t[1] + offset, t[2] + offset});
+  }
+  for(int k = 0; k < 3000; ++k) {
+    const std::size_t offset = points.size();
+    for(int i = 0; i < 3; ++i) points.emplace_back(-d - double(rng() % 1000), double(rng() % 1000), double(k));
+    triangles.push_back({offset, offset + 1 + (k % 2), offset + 2 - (k % 2)});
+  }
+  ASSERT_GT(triangles.size(), 10 * ST::internal::default_block_size);
+  for(const ST::Orientation_policy policy :
+      {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT, ST::Orientation_policy::OUTWARD}) {
+    SCOPED_TRACE("policy " + std::to_string(static_cast<int>(policy)));
+    const auto np = ST::parameters::orientation_policy(policy);
+    auto ep = points;
+    auto et = triangles;
+    const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et, np);
+    ASSERT_GT(expected.duplicate_triangles, 0u);
+    ASSERT_GT(expected.orientation_flips, 0u);
+    for_each_thread_count([&](int) {
+      auto p = points;
+      auto t = triangles;
+      const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t, np);
+      EXPECT_EQ(std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points),
+                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
+      EXPECT_EQ(bits(p), bits(ep));
+      EXPECT_EQ(t, et);
+      auto q = points;
+      auto u = triangles;
+      const ST::Adjacency_tables tables(u, q.size(), Parallel());
+      const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables, np);
+      EXPECT_EQ(std::make_tuple(w.duplicate_triangles, w.orientation_flips, w.duplicated_points),
+                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
+      EXPECT_EQ(bits(q), bits(ep));
+      EXPECT_EQ(u, et);
+    });
+  }
 }
 
 TEST(ParallelRobustnessSoup, ExactKernelAndCollapsedTriangles)

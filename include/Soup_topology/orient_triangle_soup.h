@@ -9,6 +9,7 @@
 #ifndef SOUP_TOPOLOGY_ORIENT_TRIANGLE_SOUP_H
 #define SOUP_TOPOLOGY_ORIENT_TRIANGLE_SOUP_H
 
+#include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/orient_soup.h>
 #include <Soup_topology/internal/soup_checks.h>
@@ -87,7 +88,10 @@ using Face_graph_output_report = Orientation_report;
 /// A soup that is already a consistently oriented closed manifold keeps its triangles, or has
 /// each closed component reversed as a whole by the policy.
 ///
-/// With `CGAL::Parallel_tag` the adjacency tables are built on TBB's threads; the result is the same.
+/// With `CGAL::Parallel_tag` the adjacency tables, the search for repeated triangles, the fans of
+/// the vertices, the closed patches, their volumes and the writing back run on TBB's threads (the
+/// breadth-first traversals stay on the calling thread); the result is the same, bit for bit, on
+/// any number of threads.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
 ///         or `CGAL::Parallel_if_available_tag`
@@ -115,7 +119,21 @@ using Face_graph_output_report = Orientation_report;
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters>
 Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
-                                        const NamedParameters& np = CGAL::parameters::default_values())
+                                        const NamedParameters& np = CGAL::parameters::default_values());
+
+namespace internal {
+
+/// `orient_triangle_soup()` with the adjacency tables of the soup, when the caller has them
+/// (`tables` not null: the tables of exactly `tris` over `pts`, same triangles in the same order,
+/// as a pipeline keeps them up to date; they are read, not changed). The result (points,
+/// triangles, report) is the same as without them: only the construction of the tables is saved
+/// (they are built again, once, only if repeated triangles are left out).
+/// \throws Invalid_input as `orient_triangle_soup()`, or if the tables do not have as many
+///         triangles and vertices as the soup
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
+Orientation_report orient_triangle_soup_with_tables(PointRange& pts, TriangleRange& tris, const Adjacency_tables* tables,
+                                                    const NamedParameters& np = CGAL::parameters::default_values())
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
@@ -123,18 +141,26 @@ Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
   using Default_kernel = typename CGAL::Kernel_traits<Point>::Kernel;
   using Kernel = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t, NamedParameters,
                                                                      Default_kernel>::type;
-  internal::check_triangle_soup(tris, pts.size());
-  internal::check_finite_points(pts, CGAL::Identity_property_map<Point>());
+  check_triangle_soup(tris, pts.size());
+  check_finite_points(pts, CGAL::Identity_property_map<Point>());
   const Orientation_policy policy =
     choose_parameter(get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
-  internal::Patch_orientation_rules rules;
+  Patch_orientation_rules rules;
   rules.keep_consistent_input = (policy == Orientation_policy::KEEP_INPUT);
   rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
-  internal::Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
+  Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel, tables);
   Orientation_report report;
-  internal::copy_orientation_counts(orienter.template run<ConcurrencyTag>(), report);
+  copy_orientation_counts(orienter.template run<ConcurrencyTag>(), report);
   return report;
+}
+
+} // namespace internal
+
+template <class ConcurrencyTag, class PointRange, class TriangleRange, class NamedParameters>
+Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris, const NamedParameters& np)
+{
+  return internal::orient_triangle_soup_with_tables<ConcurrencyTag>(pts, tris, nullptr, np);
 }
 
 } // namespace Soup_topology

@@ -10,6 +10,7 @@
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/separate_non_manifold.h>
 #include <Soup_topology/internal/soup_checks.h>
 
@@ -65,27 +66,50 @@ public:
     std::size_t duplicated_points = 0;
   };
 
-  Soup_orienter(PointRange& points, TriangleRange& triangles, const Patch_orientation_rules& rules, const Kernel& kernel)
-    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size())
-  {}
+  /// orients `triangles` over `points`. `tables`, when not null, are the adjacency tables of
+  /// exactly these triangles over these points (the same triangles in the same order, as a
+  /// pipeline keeps them up to date): they are used instead of tables of its own, and not
+  /// changed. Tables of its own are built only when none are given, or when repeated triangles
+  /// have to be left out.
+  Soup_orienter(PointRange& points, TriangleRange& triangles, const Patch_orientation_rules& rules, const Kernel& kernel,
+                const Adjacency_tables* tables = nullptr)
+    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size()), tables_(tables)
+  {
+    if(tables_ && (tables_->number_of_triangles() != triangles_.size() || tables_->number_of_vertices() != points_.size()))
+      throw Invalid_input("orientation: the adjacency tables given are not those of the soup");
+  }
 
-  /// orients the soup; with the tag the tables are built on TBB's threads (the traversals of the
-  /// patches are sequential: their decisions follow an order).
+  /// orients the soup; with the tag the tables, the repeated triangles, the fans of the vertices,
+  /// the closed patches, the volumes and the writing back run on TBB's threads, by blocks put
+  /// together in block order (the traversals of the patches and the decisions that follow an
+  /// order stay sequential): the result is the same on any number of threads.
   template <class ConcurrencyTag = CGAL::Sequential_tag>
   Counts run()
   {
-    remove_repeated_triangles();
-    tables_ = Adjacency_tables(triangles_, points_.size(), ConcurrencyTag());
+    if(!tables_) build_own_tables<ConcurrencyTag>();
+    if(remove_repeated_triangles<ConcurrencyTag>()) build_own_tables<ConcurrencyTag>();
     orient_patches();
-    separate_fans();
-    find_closed_patches();
-    choose_patch_orientations();
-    write_back();
+    separate_fans<ConcurrencyTag>();
+    find_closed_patches<ConcurrencyTag>();
+    choose_patch_orientations<ConcurrencyTag>();
+    write_back<ConcurrencyTag>();
     return counts_;
   }
 
 private:
   static constexpr size_type unset = static_cast<size_type>(-1);
+
+  // Triangles per block of the parallel passes over the triangles, vertices per block of those
+  // over the vertices (fixed: the blocks do not depend on the number of threads).
+  static constexpr std::size_t block_size = std::size_t(1) << 14;
+
+  template <class ConcurrencyTag>
+  void build_own_tables()
+  {
+    own_tables_ = Adjacency_tables(); // the old tables go before the new ones are built
+    own_tables_ = Adjacency_tables(triangles_, points_.size(), ConcurrencyTag());
+    tables_ = &own_tables_;
+  }
 
   // --- Canonical order -------------------------------------------------------------------------
 
@@ -106,7 +130,7 @@ private:
   std::array<size_type, 3> canonical_key(size_type t)
   {
     const std::vector<size_type>& rank = point_ranks();
-    std::array<size_type, 3> k = {rank[tables_.vertex(t, 0)], rank[tables_.vertex(t, 1)], rank[tables_.vertex(t, 2)]};
+    std::array<size_type, 3> k = {rank[tables_->vertex(t, 0)], rank[tables_->vertex(t, 1)], rank[tables_->vertex(t, 2)]};
     std::sort(k.begin(), k.end());
     return k;
   }
@@ -134,47 +158,84 @@ private:
 
   // --- Step 1: repeated triangles --------------------------------------------------------------
 
-  // The three indices of triangle t, sorted.
-  std::array<std::size_t, 3> sorted_corners(std::size_t t) const
+  // The three vertices of triangle t in the tables, sorted.
+  std::array<size_type, 3> sorted_corners(size_type t) const
   {
-    std::array<std::size_t, 3> k = {corner(triangles_[t], 0, t), corner(triangles_[t], 1, t), corner(triangles_[t], 2, t)};
+    std::array<size_type, 3> k = tables_->triangle(t);
     std::sort(k.begin(), k.end());
     return k;
   }
 
   // The pairs (first, t) of the triangles t that have the same three vertices as an earlier
-  // triangle, `first` being the first such triangle; in increasing order of t. The triangles are
-  // found by an open-addressing hash table of the first triangle of every set of vertices, the
-  // soup read once in index order.
+  // triangle, `first` being the first such triangle; in increasing order of t. Read from the
+  // tables: triangles on the same three vertices share their three edges, so a triangle with a
+  // border edge repeats none, and one with an edge that exactly two triangles share can only
+  // repeat the other one (a look at its three vertices). The triangles left, whose three edges
+  // are each shared by three or more triangles (among them every copy of a triangle repeated
+  // three times or more), are matched by `find_repeated_by_hashing()`: linear, whatever the soup.
+  // By blocks of triangles, put together in block order.
+  template <class ConcurrencyTag>
   std::vector<std::pair<std::size_t, std::size_t>> find_repeated_triangles() const
   {
-    const std::size_t n = triangles_.size();
+    const std::size_t n = tables_->number_of_triangles();
+    const std::size_t blocks = number_of_blocks(n, block_size);
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> found(blocks);
+    std::vector<std::vector<size_type>> crowded(blocks);
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t != end; ++t) {
+        const size_type tt = static_cast<size_type>(t);
+        int i = 0;
+        while(i < 3 && tables_->neighbor(tt, i) == Adjacency_tables::non_manifold_edge) ++i;
+        if(i == 3) {
+          crowded[b].push_back(tt);
+          continue;
+        }
+        const size_type u = tables_->neighbor(tt, i);
+        if(u != Adjacency_tables::border_edge && u < tt && tables_->local_index(u, tables_->vertex(tt, (i + 2) % 3)) >= 0)
+          found[b].emplace_back(u, t);
+      }
+    });
     std::vector<std::pair<std::size_t, std::size_t>> repeats;
-    if(n < 2) return repeats;
+    concatenate_in_block_order(found, repeats);
+    std::vector<size_type> candidates;
+    concatenate_in_block_order(crowded, candidates);
+    const std::vector<std::pair<std::size_t, std::size_t>> hashed = find_repeated_by_hashing(candidates);
+    if(!hashed.empty()) {
+      std::vector<std::pair<std::size_t, std::size_t>> all(repeats.size() + hashed.size());
+      std::merge(repeats.begin(), repeats.end(), hashed.begin(), hashed.end(), all.begin(),
+                 [](const auto& x, const auto& y) { return x.second < y.second; });
+      repeats.swap(all);
+    }
+    return repeats;
+  }
+
+  // The pairs (first, t) among `candidates` (increasing triangles, every copy of a set of
+  // vertices with the others) of the triangles t on the same three vertices as an earlier one,
+  // `first` the first of them; in increasing order of t. An open-addressing hash table of the
+  // first triangle of every set of vertices, the candidates read once in order.
+  std::vector<std::pair<std::size_t, std::size_t>> find_repeated_by_hashing(const std::vector<size_type>& candidates) const
+  {
+    std::vector<std::pair<std::size_t, std::size_t>> repeats;
+    const std::size_t m = candidates.size();
+    if(m < 2) return repeats;
     std::size_t capacity = 16;
-    while(capacity < 2 * n) capacity *= 2;
+    while(capacity < 2 * m) capacity *= 2;
     const std::size_t mask = capacity - 1;
-    constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
-    const bool narrow = n < static_cast<std::size_t>(empty);
-    // 32-bit slots when the triangles fit (always, below 2^32 - 1 triangles), else 64-bit ones.
-    std::vector<std::uint32_t> slots32(narrow ? capacity : 0, empty);
-    std::vector<std::size_t> slots64(narrow ? 0 : capacity, static_cast<std::size_t>(-1));
-    for(std::size_t t = 0; t < n; ++t) {
-      const std::array<std::size_t, 3> k = sorted_corners(t);
+    // the triangles are below 2^32 - 2 (`Adjacency_tables`): 32-bit slots
+    std::vector<size_type> slots(capacity, unset);
+    for(size_type t : candidates) {
+      const std::array<size_type, 3> k = sorted_corners(t);
       std::size_t h = static_cast<std::size_t>(
         mix_bits(std::uint64_t(k[0]) * 0x9e3779b97f4a7c15ULL ^ mix_bits(std::uint64_t(k[1]) + 0x632be59bd9b4e019ULL) ^
                  (mix_bits(std::uint64_t(k[2])) << 1)));
       for(;; h = (h + 1) & mask) {
         const std::size_t slot = h & mask;
-        const std::size_t other = narrow ? (slots32[slot] == empty ? static_cast<std::size_t>(-1) : slots32[slot])
-                                         : slots64[slot];
-        if(other == static_cast<std::size_t>(-1)) {
-          if(narrow) slots32[slot] = static_cast<std::uint32_t>(t);
-          else slots64[slot] = t;
+        if(slots[slot] == unset) {
+          slots[slot] = t;
           break;
         }
-        if(sorted_corners(other) == k) {
-          repeats.emplace_back(other, t);
+        if(sorted_corners(slots[slot]) == k) {
+          repeats.emplace_back(slots[slot], t);
           break;
         }
       }
@@ -184,10 +245,12 @@ private:
 
   // Triangles on the same three vertices are one: the orientation kept is the one most of them
   // have (on a tie, the increasing rotation of the point ranks), from its first occurrence.
-  void remove_repeated_triangles()
+  // Returns whether a triangle was left out (the tables are then those of the soup before).
+  template <class ConcurrencyTag>
+  bool remove_repeated_triangles()
   {
-    std::vector<std::pair<std::size_t, std::size_t>> repeats = find_repeated_triangles();
-    if(repeats.empty()) return;
+    std::vector<std::pair<std::size_t, std::size_t>> repeats = find_repeated_triangles<ConcurrencyTag>();
+    if(repeats.empty()) return false;
     // the repeats of one set of vertices together, each set's in increasing index order
     std::stable_sort(repeats.begin(), repeats.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -230,6 +293,7 @@ private:
         ++kept;
       }
     triangles_.resize(kept);
+    return true;
   }
 
   // --- Step 2: orientation of the patches ------------------------------------------------------
@@ -254,18 +318,18 @@ private:
         const std::vector<size_type>& rank = point_ranks();
         std::array<std::pair<size_type, size_type>, 3> key;
         for(int i = 0; i < 3; ++i) {
-          const size_type ra = rank[tables_.vertex(t, i)], rb = rank[tables_.vertex(t, (i + 1) % 3)];
+          const size_type ra = rank[tables_->vertex(t, i)], rb = rank[tables_->vertex(t, (i + 1) % 3)];
           key[std::size_t(i)] = {std::min(ra, rb), std::max(ra, rb)};
         }
         std::sort(edges.begin(), edges.end(), [&](int x, int y) { return key[std::size_t(x)] < key[std::size_t(y)]; });
       }
       for(int i : edges) {
         const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
-        const size_type u = tables_.neighbor(t, i);
+        const size_type u = tables_->neighbor(t, i);
         if(u >= Adjacency_tables::non_manifold_edge || cut_[ti]) continue;
-        const size_type a = tables_.vertex(t, i);
-        const int j = tables_.edge_index(u, a, tables_.vertex(t, (i + 1) % 3));
-        const bool u_reads_a_to_b = tables_.vertex(u, j) == a;
+        const size_type a = tables_->vertex(t, i);
+        const int j = tables_->edge_index(u, a, tables_->vertex(t, (i + 1) % 3));
+        const bool u_reads_a_to_b = tables_->vertex(u, j) == a;
         if(patch_[u] == unset) {
           patch_[u] = p;
           reversed_[u] = (u_reads_a_to_b != (reversed_[t] != 0)) ? 1 : 0;
@@ -286,7 +350,7 @@ private:
 
   void orient_patches()
   {
-    const std::size_t n = tables_.number_of_triangles();
+    const std::size_t n = tables_->number_of_triangles();
     reversed_.assign(n, 0);
     patch_.assign(n, unset);
     cut_.assign(3 * n, 0);
@@ -325,23 +389,64 @@ private:
 
   // --- Step 3: non-manifold vertices -----------------------------------------------------------
 
+  // Whether the triangles around v form one fan: walked from the first of them across the
+  // manifold edges not cut, both ways around v (in a fan every triangle has at most one such
+  // neighbour on each of its two edges at v, so the walk is a path or a cycle); one fan if it
+  // meets every triangle of v. Constant memory, linear in the degree of v.
+  bool is_one_fan(size_type v) const
+  {
+    const Adjacency_tables::Id_range around = tables_->triangles_around_vertex(v);
+    const size_type first = around[0];
+    const std::size_t degree = around.size();
+    std::size_t met = 1;
+    const int iv = tables_->local_index(first, v);
+    for(int side = 0; side < 2; ++side) {
+      // crossing the edge of t at v whose other end is w
+      size_type t = first;
+      size_type w = tables_->vertex(first, side == 0 ? (iv + 1) % 3 : (iv + 2) % 3);
+      for(;;) {
+        const int it = tables_->local_index(t, v);
+        const int e = tables_->vertex(t, (it + 1) % 3) == w ? it : (it + 2) % 3;
+        const size_type u = tables_->neighbor(t, e);
+        if(u >= Adjacency_tables::non_manifold_edge || cut_[3 * std::size_t(t) + std::size_t(e)]) break;
+        if(u == first) return met == degree; // around a closed fan
+        if(++met > degree) return false;     // tables that do not describe fans: leave it to the full search
+        const int iu = tables_->local_index(u, v);
+        const size_type next = tables_->vertex(u, (iu + 1) % 3);
+        w = next == w ? tables_->vertex(u, (iu + 2) % 3) : next;
+        t = u;
+      }
+    }
+    return met == degree;
+  }
+
   // Every vertex gets one point per fan of its triangles (edges shared by three or more
   // triangles and cut edges do not join fans). The fan with the canonically smallest triangle
   // keeps the point; the others get copies appended, in the canonical order of their smallest
-  // triangles, vertex after vertex in index order.
+  // triangles, vertex after vertex in index order. Which vertices have more than one fan is found
+  // by blocks of vertices (`is_one_fan()`); only those are searched and separated, in order.
+  template <class ConcurrencyTag>
   void separate_fans()
   {
-    const std::size_t n = tables_.number_of_triangles();
+    const std::size_t n = tables_->number_of_triangles();
     corner_vertex_.resize(3 * n);
-    for(size_type t = 0; t < n; ++t)
-      for(int i = 0; i < 3; ++i) corner_vertex_[3 * std::size_t(t) + std::size_t(i)] = tables_.vertex(t, i);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t t) {
+      for(int i = 0; i < 3; ++i) corner_vertex_[3 * t + std::size_t(i)] = tables_->vertex(size_type(t), i);
+    });
+    const std::size_t vertices = tables_->number_of_vertices();
+    std::vector<std::vector<size_type>> split_in_block(number_of_blocks(vertices, block_size));
+    for_each_block<ConcurrencyTag>(vertices, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t v = begin; v != end; ++v)
+        if(tables_->degree(size_type(v)) >= 2 && !is_one_fan(size_type(v))) split_in_block[b].push_back(size_type(v));
+    });
+    std::vector<size_type> several_fans;
+    concatenate_in_block_order(split_in_block, several_fans);
     std::vector<std::size_t> fan, stack, rank_of_fan, new_index;
     std::vector<size_type> smallest;
-    for(size_type v = 0; v < tables_.number_of_vertices(); ++v) {
-      if(tables_.degree(v) < 2) continue;
-      const std::size_t k = fans_around_vertex(tables_, cut_, v, fan, stack);
+    for(size_type v : several_fans) {
+      const std::size_t k = fans_around_vertex(*tables_, cut_, v, fan, stack);
       if(k == 1) continue;
-      const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(v);
+      const Adjacency_tables::Id_range around = tables_->triangles_around_vertex(v);
       smallest.assign(k, unset);
       std::vector<std::array<size_type, 3>> smallest_key(k);
       for(std::size_t j = 0; j < around.size(); ++j) {
@@ -360,23 +465,23 @@ private:
         ++counts_.duplicated_points;
       }
       for(std::size_t j = 0; j < around.size(); ++j)
-        corner_vertex_[3 * std::size_t(around[j]) + std::size_t(tables_.local_index(around[j], v))] = new_index[fan[j]];
+        corner_vertex_[3 * std::size_t(around[j]) + std::size_t(tables_->local_index(around[j], v))] = new_index[fan[j]];
     }
   }
 
   // Whether edge i of t is shared by another triangle once the fans are separated. Only a
   // triangle of the same patch can share it (both ends are in the same fans), and then it runs
   // the edge in the opposite direction: the fans are consistently oriented.
-  bool is_shared_in_output(size_type t, int i)
+  bool is_shared_in_output(size_type t, int i, std::vector<size_type>& around_edge) const
   {
-    const size_type u = tables_.neighbor(t, i);
+    const size_type u = tables_->neighbor(t, i);
     const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
     if(u == Adjacency_tables::border_edge || cut_[ti]) return false;
     if(u != Adjacency_tables::non_manifold_edge) return true;
     const std::size_t a = corner_vertex_[ti], b = corner_vertex_[3 * std::size_t(t) + std::size_t((i + 1) % 3)];
-    around_edge_.clear();
-    tables_.triangles_around_edge(t, i, std::back_inserter(around_edge_));
-    for(size_type w : around_edge_) {
+    around_edge.clear();
+    tables_->triangles_around_edge(t, i, std::back_inserter(around_edge));
+    for(size_type w : around_edge) {
       bool has_a = false, has_b = false;
       for(int k = 0; k < 3; ++k) {
         const std::size_t c = corner_vertex_[3 * std::size_t(w) + std::size_t(k)];
@@ -388,12 +493,52 @@ private:
     return false;
   }
 
+  // A patch is closed when every edge of its triangles is shared in the output. The triangles
+  // with an edge that is not are found by blocks; a patch known to be open is not looked at
+  // again within a block.
+  template <class ConcurrencyTag>
   void find_closed_patches()
   {
     closed_.assign(patch_begin_.size() - 1, 1);
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
-      for(int i = 0; i < 3 && closed_[patch_[t]]; ++i)
-        if(!is_shared_in_output(t, i)) closed_[patch_[t]] = 0;
+    const std::size_t n = tables_->number_of_triangles();
+    std::vector<std::vector<size_type>> open_in_block(number_of_blocks(n, block_size));
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::vector<size_type> around_edge;
+      size_type last_open = unset;
+      for(std::size_t t = begin; t != end; ++t) {
+        const size_type p = patch_[t];
+        if(p == last_open) continue;
+        for(int i = 0; i < 3; ++i)
+          if(!is_shared_in_output(size_type(t), i, around_edge)) {
+            open_in_block[b].push_back(p);
+            last_open = p;
+            break;
+          }
+      }
+    });
+    for(const std::vector<size_type>& open : open_in_block)
+      for(size_type p : open) closed_[p] = 0;
+  }
+
+  // Calls f(k) for every k in [0, patches.size()), in parallel with the tag: the patches are cut
+  // into groups of consecutive patches of about `block_size` triangles (a group per big patch),
+  // a group per task, so that many small patches make few tasks. The groups depend on the
+  // patches only.
+  template <class ConcurrencyTag, class F>
+  void for_each_patch(const std::vector<size_type>& patches, const F& f) const
+  {
+    std::vector<std::size_t> group_begin(1, 0);
+    std::size_t triangles = 0;
+    for(std::size_t k = 0; k < patches.size(); ++k) {
+      triangles += patch_begin_[patches[k] + 1] - patch_begin_[patches[k]];
+      if(triangles >= block_size || k + 1 == patches.size()) {
+        group_begin.push_back(k + 1);
+        triangles = 0;
+      }
+    }
+    for_each_index<ConcurrencyTag>(group_begin.size() - 1, [&](std::size_t g) {
+      for(std::size_t k = group_begin[g]; k < group_begin[g + 1]; ++k) f(k);
+    }, 1);
   }
 
   // --- Step 4: orientation of each patch as a whole ----------------------------------------------
@@ -406,9 +551,9 @@ private:
     double volume = 0;
     for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
       const size_type t = patch_order_[k];
-      const std::array<double, 3>& a = xyz(tables_.vertex(t, 0));
-      const std::array<double, 3>& b = xyz(tables_.vertex(t, reversed_[t] ? 2 : 1));
-      const std::array<double, 3>& d = xyz(tables_.vertex(t, reversed_[t] ? 1 : 2));
+      const std::array<double, 3>& a = xyz(tables_->vertex(t, 0));
+      const std::array<double, 3>& b = xyz(tables_->vertex(t, reversed_[t] ? 2 : 1));
+      const std::array<double, 3>& d = xyz(tables_->vertex(t, reversed_[t] ? 1 : 2));
       volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
     }
     return volume;
@@ -423,7 +568,7 @@ private:
       const size_type t = patch_order_[k];
       std::array<double, 3> c[3];
       for(int i = 0; i < 3; ++i) {
-        const std::array<double, 3>& x = xyz(tables_.vertex(t, i));
+        const std::array<double, 3>& x = xyz(tables_->vertex(t, i));
         c[i] = {x[0] - q[0], x[1] - q[1], x[2] - q[2]};
       }
       if(reversed_[t]) std::swap(c[1], c[2]);
@@ -441,20 +586,22 @@ private:
 
   // For every closed patch, the number of other closed patches that enclose it, tested at the
   // centroid of its largest triangle (a geometric choice: the input order does not change it).
+  // The boxes and samples are computed one patch per index, on TBB's threads with the tag.
+  template <class ConcurrencyTag>
   std::vector<std::size_t> nesting_depths(const std::vector<size_type>& closed_patches) const
   {
     const std::size_t m = closed_patches.size();
     std::vector<std::array<double, 6>> box(m);
     std::vector<std::array<double, 3>> sample(m);
-    for(std::size_t c = 0; c < m; ++c) {
+    for_each_patch<ConcurrencyTag>(closed_patches, [&](std::size_t c) {
       const size_type p = closed_patches[c];
       box[c] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
       double largest = -1;
       for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
         const size_type t = patch_order_[k];
-        const std::array<double, 3>& a = xyz(tables_.vertex(t, 0));
-        const std::array<double, 3>& b = xyz(tables_.vertex(t, 1));
-        const std::array<double, 3>& d = xyz(tables_.vertex(t, 2));
+        const std::array<double, 3>& a = xyz(tables_->vertex(t, 0));
+        const std::array<double, 3>& b = xyz(tables_->vertex(t, 1));
+        const std::array<double, 3>& d = xyz(tables_->vertex(t, 2));
         for(const std::array<double, 3>* x : {&a, &b, &d})
           for(std::size_t i = 0; i < 3; ++i) {
             box[c][i] = std::min(box[c][i], (*x)[i]);
@@ -468,7 +615,7 @@ private:
           sample[c] = {(a[0] + b[0] + d[0]) / 3, (a[1] + b[1] + d[1]) / 3, (a[2] + b[2] + d[2]) / 3};
         }
       }
-    }
+    });
     // Only pairs of overlapping boxes can be nested: found by CGAL's box intersection, not by
     // testing every pair (a soup can hold many thousands of closed pieces).
     using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
@@ -510,13 +657,15 @@ private:
     return true;
   }
 
+  template <class ConcurrencyTag>
   void choose_patch_orientations()
   {
     const std::size_t number_of_patches = patch_begin_.size() - 1;
     turn_.assign(number_of_patches, 0);
     xyz_.resize(input_points_);
-    for(std::size_t v = 0; v < input_points_; ++v)
+    for_each_index<ConcurrencyTag>(input_points_, [&](std::size_t v) {
       xyz_[v] = {CGAL::to_double(points_[v].x()), CGAL::to_double(points_[v].y()), CGAL::to_double(points_[v].z())};
+    });
     std::vector<size_type> by_volume, closed_patches;
     for(size_type p = 0; p < number_of_patches; ++p) {
       if(!closed_[p]) turn_[p] = majority_turns(p) ? 1 : 0;
@@ -526,24 +675,34 @@ private:
     }
     if(by_volume.empty()) return;
     std::vector<std::size_t> depth(number_of_patches, 0);
-    if(rules_.nest_closed_patches) {
-      const std::vector<std::size_t> d = nesting_depths(closed_patches);
+    if(rules_.nest_closed_patches && closed_patches.size() > 1) { // one closed patch alone is at depth 0
+      const std::vector<std::size_t> d = nesting_depths<ConcurrencyTag>(closed_patches);
       for(std::size_t c = 0; c < closed_patches.size(); ++c) depth[closed_patches[c]] = d[c];
     }
-    for(size_type p : by_volume) turn_[p] = ((patch_volume(p) < 0) != (depth[p] % 2 == 1)) ? 1 : 0;
+    // one volume per patch, each summed in the order of its triangles by one thread
+    for_each_patch<ConcurrencyTag>(by_volume, [&](std::size_t k) {
+      const size_type p = by_volume[k];
+      turn_[p] = ((patch_volume(p) < 0) != (depth[p] % 2 == 1)) ? 1 : 0;
+    });
   }
 
   // --- Step 5: writing back --------------------------------------------------------------------
 
+  template <class ConcurrencyTag>
   void write_back()
   {
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t) {
-      const std::size_t* c = &corner_vertex_[3 * std::size_t(t)];
-      const bool reverse = (reversed_[t] != 0) != (turn_[patch_[t]] != 0);
-      if(reverse) ++counts_.orientation_flips;
-      if(reverse) assign_triangle(triangles_[t], c[0], c[2], c[1]);
-      else assign_triangle(triangles_[t], c[0], c[1], c[2]);
-    }
+    const std::size_t n = tables_->number_of_triangles();
+    std::vector<std::size_t> flips(number_of_blocks(n, block_size), 0);
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t != end; ++t) {
+        const std::size_t* c = &corner_vertex_[3 * t];
+        const bool reverse = (reversed_[t] != 0) != (turn_[patch_[t]] != 0);
+        if(reverse) ++flips[b];
+        if(reverse) assign_triangle(triangles_[t], c[0], c[2], c[1]);
+        else assign_triangle(triangles_[t], c[0], c[1], c[2]);
+      }
+    });
+    for(std::size_t f : flips) counts_.orientation_flips += f;
   }
 
   PointRange& points_;
@@ -552,14 +711,14 @@ private:
   Kernel kernel_;
   std::size_t input_points_;
   Counts counts_;
-  Adjacency_tables tables_;
+  const Adjacency_tables* tables_; // the tables given, or own_tables_
+  Adjacency_tables own_tables_;
   std::vector<size_type> rank_;
   std::vector<char> reversed_, cut_, non_orientable_, closed_, turn_;
   std::vector<size_type> patch_;
   std::vector<size_type> patch_order_;   // the triangles, patch after patch
   std::vector<std::size_t> patch_begin_; // patch p is patch_order_[patch_begin_[p], patch_begin_[p + 1])
   std::vector<std::size_t> corner_vertex_;
-  std::vector<size_type> around_edge_;
   std::vector<std::array<double, 3>> xyz_;
 };
 
