@@ -477,17 +477,9 @@ TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
 // budget with a clear error instead.
 TEST(GapAnalysis, CrowdedBordersStopAtTheCandidateBudget)
 {
-  std::mt19937_64 random(7);
-  auto coordinate = [&random] { return double(random() >> 11) * 0x1.0p-53; };
   std::vector<Point> points;
   std::vector<Triangle> triangles;
-  for(std::size_t t = 0; t < 20000; ++t) {
-    const double c[3] = {coordinate(), coordinate(), coordinate()};
-    for(std::size_t k = 0; k < 3; ++k)
-      points.emplace_back(c[0] + 0.6 * (coordinate() - 0.5), c[1] + 0.6 * (coordinate() - 0.5),
-                          c[2] + 0.6 * (coordinate() - 0.5));
-    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-  }
+  soup_test::crowded_scattered_soup(20000, points, triangles);
   try {
     ST::analyze_gaps(points, triangles);
     ADD_FAILURE() << "not refused";
@@ -667,6 +659,36 @@ TEST(GapsCommand, PrintsTheAnalysisAndRepairsWithAutomaticTolerance)
   const auto [both, code_both] = soup_test::run_command(cli() + " repair '" + to220 + "' -o '" + dir +
                                                         "/x.off' --tolerance auto --relative-tolerance 1e-6 2>&1");
   EXPECT_EQ(code_both, 2) << both;
+}
+
+// `soup_topology repair --tolerance per-part`: the analysis per part and the pipeline's
+// vertex_tolerance_map through the tool. On the two parts of different scales both seams close
+// (the outline of each part is left: 6 + 6 border edges), where `--tolerance auto` closes the
+// small seam only (14); the report gives the largest tolerance of the map and the choice per part.
+TEST(GapAnalysis, ToolRepairsEachPartWithItsOwnTolerance)
+{
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  Soup s;
+  add_two_squares(s, 0.01, 1e-6, 0);
+  add_two_squares(s, 10, 0.05, 100);
+  const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part(s.points, s.triangles);
+  ASSERT_EQ(parts.size(), 2u);
+  const std::string dir = soup_test::temporary_folder("per_part_tolerance");
+  write_off(dir + "/parts.off", s);
+  const std::string repair = cli() + " repair '" + dir + "/parts.off' -o '" + dir + "/repaired.off' ";
+  const auto [json, code] = soup_test::run_command(repair + "--tolerance per-part --json");
+  ASSERT_EQ(code, 0) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "soup_border_edges"), 12) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "snapped_vertices"), 4) << json;
+  EXPECT_EQ(json_double(json, "tolerance"), parts[0].suggested_tolerance) << json;
+  EXPECT_NE(json.find("\"tolerance_choice\": \"per part: 2 parts: 4 triangles, tolerance "), std::string::npos) << json;
+  const auto [automatic, automatic_code] = soup_test::run_command(repair + "--tolerance auto --json");
+  ASSERT_EQ(automatic_code, 0) << automatic;
+  EXPECT_EQ(soup_test::json_integer(automatic, "soup_border_edges"), 14) << automatic;
+  const auto [both, both_code] = soup_test::run_command(repair + "--tolerance per-part --relative-tolerance 1e-3 2>&1");
+  EXPECT_EQ(both_code, 2) << both;
+  EXPECT_NE(both.find("give --tolerance or --relative-tolerance, not both"), std::string::npos) << both;
+  std::filesystem::remove_all(dir);
 }
 
 } // namespace

@@ -806,17 +806,9 @@ TEST(ParallelGapAnalysis, SortSizesIsStdSort)
 // refused as sequentially (the soup of GapAnalysis.CrowdedBordersStopAtTheCandidateBudget).
 TEST(ParallelGapAnalysis, CrowdedBordersAreRefusedOnAnyNumberOfThreads)
 {
-  std::mt19937_64 random(7);
-  auto coordinate = [&random] { return double(random() >> 11) * 0x1.0p-53; };
   std::vector<Point> points;
   std::vector<Triangle> triangles;
-  for(std::size_t t = 0; t < 20000; ++t) {
-    const double c[3] = {coordinate(), coordinate(), coordinate()};
-    for(std::size_t k = 0; k < 3; ++k)
-      points.emplace_back(c[0] + 0.6 * (coordinate() - 0.5), c[1] + 0.6 * (coordinate() - 0.5),
-                          c[2] + 0.6 * (coordinate() - 0.5));
-    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
-  }
+  soup_test::crowded_scattered_soup(20000, points, triangles);
   std::string expected;
   try {
     ST::analyze_gaps(points, triangles);

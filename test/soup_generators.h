@@ -7,7 +7,9 @@
 //   differently on the two sides (T-junctions), with every patch owning its own copies of its
 //   vertices, each copy jittered;
 // - `small_feature_soup`: the same with patches around random seeds, and split points placed
-//   within a given distance of an edge's end point (features below the tolerance).
+//   within a given distance of an edge's end point (features below the tolerance);
+// - `crowded_scattered_soup`: separate triangles of random sizes scattered in a unit cube, whose
+//   borders crowd each other (the candidate budget of the gap analysis).
 
 #ifndef SOUP_TOPOLOGY_TEST_SOUP_GENERATORS_H
 #define SOUP_TOPOLOGY_TEST_SOUP_GENERATORS_H
@@ -250,6 +252,22 @@ Small_feature_soup<Point> small_feature_soup(const std::vector<Point>& points, c
     soup.triangles.push_back(out);
   }
   return soup;
+}
+
+/// `n` separate triangles, each with corners within 0.3 (per coordinate) of a random centre in
+/// the unit cube: every border crowds the others (20,000 exceed the gap analysis' candidate budget).
+template <class Point>
+void crowded_scattered_soup(std::size_t n, std::vector<Point>& points, std::vector<Index_triangle>& triangles)
+{
+  std::mt19937_64 random(7);
+  auto coordinate = [&random] { return double(random() >> 11) * 0x1.0p-53; };
+  for(std::size_t t = 0; t < n; ++t) {
+    const double c[3] = {coordinate(), coordinate(), coordinate()};
+    for(std::size_t k = 0; k < 3; ++k)
+      points.emplace_back(c[0] + 0.6 * (coordinate() - 0.5), c[1] + 0.6 * (coordinate() - 0.5),
+                          c[2] + 0.6 * (coordinate() - 0.5));
+    triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
 }
 
 } // namespace soup_test

@@ -4,7 +4,7 @@
 // soup_topology: the command-line face of the library.
 //   soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]
 //   soup_topology gaps FILE [--json] [--threads N]
-//   soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]
+//   soup_topology repair IN -o OUT [--tolerance T|auto|per-part | --relative-tolerance R] [--report FILE.json]
 //                        [--json] [--check] [--no-t-junctions] [--self-intersections]
 //                        [--orientation P] [--small-features collapse|refuse] [--html REPORT.html]
 //                        [--threads N]
@@ -83,14 +83,17 @@ const char* usage_text =
   "      builds the adjacency tables and prints what it found.\n"
   "  soup_topology gaps FILE [--json] [--threads N]\n"
   "      measures the gaps between the borders and the feature sizes, and suggests a tolerance.\n"
-  "  soup_topology repair IN -o OUT [--tolerance T|auto | --relative-tolerance R] [--report FILE.json]\n"
+  "  soup_topology repair IN -o OUT [--tolerance T|auto|per-part | --relative-tolerance R]\n"
+  "                       [--report FILE.json]\n"
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "                       [--small-features collapse|refuse] [--html REPORT.html] [--threads N]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
-  "      within the tolerance (absolute T, or R times the bounding-box diagonal; default: exact\n"
-  "      duplicates only), splits T-junctions, repeats until nothing changes, orients every\n"
-  "      component, separates non-manifold vertices and edges by duplicating their points, and\n"
+  "      within the tolerance (absolute T, or R times the bounding-box diagonal; auto: the one the\n"
+  "      gap analysis suggests; per-part: the one it suggests for each part, two points welded\n"
+  "      within the smaller of theirs; default: exact duplicates only), splits T-junctions,\n"
+  "      repeats until nothing changes, orients every component, separates non-manifold vertices\n"
+  "      and edges by duplicating their points, and\n"
   "      writes OUT (.off, .obj, .ply binary, or .stl binary: refused if float rounding would\n"
   "      change the mesh). Prints the report (--json: one JSON object); --report also writes it\n"
   "      to FILE.json. The report's counts (closed, border_edges, ...) describe the file written;\n"
@@ -379,6 +382,7 @@ struct Repair_options
   bool json = false, check = false, split = true, self_intersections = false;
   std::optional<double> tolerance, relative;
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
+  bool per_part = false;         // --tolerance per-part: the analysis per part, a tolerance per point
   std::size_t threads = 0;       // --threads N; 0: all cores
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
@@ -397,7 +401,8 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--tolerance") {
       const std::string& v = value();
       o.automatic = v == "auto";
-      if(o.automatic) o.tolerance.reset();
+      o.per_part = v == "per-part";
+      if(o.automatic || o.per_part) o.tolerance.reset();
       else o.tolerance = parse_number(a, v);
     }
     else if(a == "--relative-tolerance") o.relative = parse_number(a, value());
@@ -416,11 +421,27 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
   }
   if(o.in.empty()) throw Usage_error("repair: no input file");
   if(o.out.empty()) throw Usage_error("repair: no output file (-o OUT)");
-  if((o.tolerance || o.automatic) && o.relative) throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  if((o.tolerance || o.automatic || o.per_part) && o.relative)
+    throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
   o.out_format = ST::IO::file_extension(o.out);
   if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
   return o;
+}
+
+// What --tolerance per-part chose, in words: the parts (largest first), each with its tolerance
+// and its verdict.
+std::string per_part_choice(const std::vector<ST::Part_gap_analysis>& parts)
+{
+  std::string text = std::to_string(parts.size()) + (parts.size() == 1 ? " part" : " parts");
+  char buffer[64];
+  for(std::size_t k = 0; k < parts.size(); ++k) {
+    const ST::Part_gap_analysis& p = parts[k];
+    std::snprintf(buffer, sizeof buffer, "%.3g", p.verdict == ST::Gap_verdict::SUGGESTED ? p.suggested_tolerance : 0.0);
+    text += std::string(k == 0 ? ": " : "; ") + std::to_string(p.triangles) + " triangles, tolerance " + buffer + " (" +
+            ST::verdict_name(p.verdict) + ")";
+  }
+  return text;
 }
 
 // The soup as read is exactly welded already (read_triangle_soup): the pipeline does not weld
@@ -450,6 +471,17 @@ ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point
       throw std::runtime_error(std::string("--tolerance auto: ") + e.what() + " with --tolerance T (see 'soup_topology gaps')");
     }
   }
+  if(o.per_part) {
+    // Each part of the soup gets the tolerance its own analysis suggests (0 for a part without
+    // suggestion: only exact duplicates there), and two points weld within the smaller of theirs.
+    const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part<Concurrency>(points, triangles);
+    const std::vector<double> tolerances = ST::per_part_vertex_tolerances(parts, points.size());
+    ST::Reconstruction_report r = ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
+      points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
+                           o.split, ST::parameters::vertex_tolerance_map(CGAL::make_property_map(tolerances), told))));
+    r.tolerance_reasoning = per_part_choice(parts);
+    return r;
+  }
   return ST::internal::reconstruct_exactly_welded_soup<Concurrency>(points, triangles, split);
 }
 
@@ -470,6 +502,8 @@ Report repair_report(const Repair_options& o, const ST::IO::Soup_read_report& re
   rep.add("tolerance", r.tolerance);
   if(r.automatic_tolerance)
     rep.add_string("tolerance_choice", std::string(ST::verdict_name(r.tolerance_verdict)) + ": " + r.tolerance_reasoning);
+  else if(o.per_part)
+    rep.add_string("tolerance_choice", "per part: " + r.tolerance_reasoning);
   add_statistics(rep, s, 0);
   if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
   rep.add("soup_vertices", r.output_points);

@@ -369,9 +369,9 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 
 /// the gaps of the border vertices `border` into `a`, measured up to the median border edge
 /// length (at least the smallest border feature, so that every gap below the bound and the first
-/// one above it are measured when they exist).
+/// one above it are measured when they exist); returns the nearest element of every border vertex.
 template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
-void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
                   const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
                   Gap_analysis& a)
 {
@@ -400,6 +400,7 @@ void measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const T
   sort_sizes<ConcurrencyTag>(a.gaps);
   a.zero_gaps = static_cast<std::size_t>(std::upper_bound(a.gaps.begin(), a.gaps.end(), 0.0) - a.gaps.begin());
   a.gap_histogram = log_histogram<Gap_histogram_bin>(a.gaps);
+  return nearest;
 }
 
 /// the diagonal of the bounding box of the points of `pts` that a triangle of `tris` uses.
@@ -642,6 +643,9 @@ inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>&
 /// vertices, then by their reasoning (then by their points). Each lists its points
 /// (`Part_gap_analysis::points`, indices into `points`).
 ///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default), `CGAL::Parallel_tag` (needs TBB) or
+///         `CGAL::Parallel_if_available_tag`: the measures of `analyze_gaps()` on TBB's threads,
+///         the same result
 /// \tparam PointRange a random-access range of points (read through `point_map`)
 /// \tparam TriangleRange a range of triangles (3 indices each)
 /// \param points the points of the soup
@@ -658,7 +662,8 @@ inline std::vector<Part_gap_analysis> summarize_parts(std::vector<Gap_analysis>&
 ///
 /// \returns one `Part_gap_analysis` per part.
 /// \throws Invalid_input as `analyze_gaps()`
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, const TriangleRange& triangles,
                                                      const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -683,12 +688,9 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   // The gaps, as analyze_gaps() measures them, with their nearest elements.
   Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
-  internal::measure_feature_sizes<CGAL::Sequential_tag>(pts, tris, tables, gt, global);
+  internal::measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, global);
   std::vector<internal::Nearest_border_element> nearest;
-  if(!border.empty()) {
-    internal::measure_gaps<CGAL::Sequential_tag>(pts, tris, tables, border, gt, global);
-    nearest = internal::nearest_border_elements(pts, tables, border, global.search_radius, gt);
-  }
+  if(!border.empty()) nearest = internal::measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, global);
   // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so
   // that the order of the joins does not matter).
   const auto piece_of_vertex = [&](std::size_t v) {

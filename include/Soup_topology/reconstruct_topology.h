@@ -470,9 +470,9 @@ private:
 
 /// the gap analysis of `automatic_tolerance(true)`, on the soup given to the pipeline before
 /// anything is changed: on a copy welded by `analyze_gaps()`, or, with `Exact_weld::DONE`, on the
-/// soup itself.
+/// soup itself; on TBB's threads with `CGAL::Parallel_tag` (the same analysis).
 /// \throws Invalid_input if a tolerance is given too, or if the analysis suggests none (its reasoning says why)
-template <class Point, class TriangleRange, class NamedParameters, class Geom_traits>
+template <class ConcurrencyTag, class Point, class TriangleRange, class NamedParameters, class Geom_traits>
 Gap_analysis automatic_tolerance_analysis(const std::vector<Point>& pts, const TriangleRange& triangles,
                                           const NamedParameters&, const Geom_traits& gt, Exact_weld exact_weld)
 {
@@ -481,8 +481,8 @@ Gap_analysis automatic_tolerance_analysis(const std::vector<Point>& pts, const T
      !is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value)
     throw Invalid_input("automatic_tolerance(true) chooses the tolerance: give no snapping_tolerance or relative_tolerance with it");
   Gap_analysis a = exact_weld == Exact_weld::DONE
-                     ? analyze_exactly_welded_gaps(pts, triangles, gt)
-                     : analyze_gaps(pts, triangles, CGAL::parameters::geom_traits(gt));
+                     ? analyze_exactly_welded_gaps<ConcurrencyTag>(pts, triangles, gt)
+                     : analyze_gaps<ConcurrencyTag>(pts, triangles, CGAL::parameters::geom_traits(gt));
   if(!a.has_suggestion())
     throw Invalid_input("automatic tolerance: " + a.reasoning + "; give a tolerance by hand");
   return a;
@@ -516,7 +516,7 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   std::optional<Gap_analysis> automatic;
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, internal_np::automatic_tolerance_t>::value) {
     if(choose_parameter(get_parameter(np, internal_np::automatic_tolerance), false)) {
-      automatic = automatic_tolerance_analysis(steps.points(), triangles, np, gt, exact_weld);
+      automatic = automatic_tolerance_analysis<ConcurrencyTag>(steps.points(), triangles, np, gt, exact_weld);
       eps = FT(automatic->suggested_tolerance);
     }
   }
