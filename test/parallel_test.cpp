@@ -773,6 +773,18 @@ TEST(ParallelGapAnalysis, EqualEdgesAreBrokenByTheirOrder)
   });
 }
 
+// With an exact kernel the measures that compare or construct points are sequential (lazily
+// exact numbers share state between points): the same analysis, without a race.
+TEST(ParallelGapAnalysis, ExactKernel)
+{
+  const Mesh_data m = load("cad/ALSTOM_TEST4.off");
+  std::vector<Epeck::Point_3> points;
+  for(const Point& p : m.points) points.emplace_back(p.x(), p.y(), p.z());
+  const ST::Gap_analysis expected = ST::analyze_gaps(points, m.triangles);
+  EXPECT_EQ(expected.verdict, ST::Gap_verdict::SUGGESTED) << expected.reasoning;
+  for_each_thread_count([&](int) { expect_same_analysis(ST::analyze_gaps<Parallel>(points, m.triangles), expected); });
+}
+
 TEST(ParallelGapAnalysis, SortSizesIsStdSort)
 {
   std::mt19937_64 rng(3);

@@ -327,8 +327,9 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
     std::vector<double> shortest, heights, smallest, border_features;
     std::size_t degenerate = 0;
   };
+  using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
   std::vector<Sizes> blocks(number_of_blocks(tris.size()));
-  for_each_block<ConcurrencyTag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
+  for_each_block<Tag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
     typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
     Sizes& out = blocks[g];
     out.shortest.reserve(end - begin);
@@ -375,8 +376,9 @@ std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom
                   const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
                   Gap_analysis& a)
 {
+  using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
   std::vector<std::vector<double>> lengths(number_of_blocks(tris.size()));
-  for_each_block<ConcurrencyTag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
+  for_each_block<Tag>(tris.size(), default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
     typename Geom_traits::Compute_squared_distance_3 squared_distance = gt.compute_squared_distance_3_object();
     for(std::size_t t = begin; t < end; ++t)
       for(int i = 0; i < 3; ++i)
@@ -468,8 +470,9 @@ Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits:
 /// within a rounding error of the tolerance, and the tolerance is a factor sqrt(2) away from every gap.
 ///
 /// **Threads.** With `CGAL::Parallel_tag` the searches of the nearest border elements and the
-/// feature sizes run on TBB's threads (coordinates stored as `double`); the result is the same,
-/// to the bit, as with `CGAL::Sequential_tag`, on any number of threads.
+/// feature sizes run on TBB's threads (coordinates stored as `double`; with exact number types,
+/// which share cached state between points, the measures are sequential); the result is the
+/// same, to the bit, as with `CGAL::Sequential_tag`, on any number of threads.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (default), `CGAL::Parallel_tag` (needs TBB) or
 ///         `CGAL::Parallel_if_available_tag`

@@ -27,11 +27,19 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace Soup_topology {
 namespace internal {
+
+/// `ConcurrencyTag` for the measures that construct or compare points: `CGAL::Sequential_tag` when
+/// the coordinates are not `double` (lazily exact numbers share cached state between the points
+/// they come from: such steps run sequentially, `doc/Soup_topology/Parallel.md`, rule 6).
+template <class ConcurrencyTag, class Geom_traits>
+using Geometric_concurrency =
+  std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
 
 /// the nearest border element of one border vertex.
 struct Nearest_border_element
@@ -353,7 +361,8 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   if(border.empty()) return {};
   Nearest_border_search<Geom_traits> search(points, tables, border, gt);
   const double first_radius = radius * first_gap_pass_fraction;
-  search.template search_all<ConcurrencyTag>(first_radius, Candidates::COUNT_WHILE_SEARCHING);
+  using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
+  search.template search_all<Tag>(first_radius, Candidates::COUNT_WHILE_SEARCHING);
   // Relative rounding of a distance evaluated in double is a few units in the last place.
   const double decided_below = first_radius * (1 - 1e-9);
   std::vector<std::size_t> undecided;
@@ -361,7 +370,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
     if(!(search.nearest()[k].distance < decided_below)) undecided.push_back(k);
   if(2 * undecided.size() > border.size()) {
     search.nearest().assign(border.size(), Nearest_border_element());
-    search.template search_all<ConcurrencyTag>(radius, Candidates::COUNT_FIRST);
+    search.template search_all<Tag>(radius, Candidates::COUNT_FIRST);
   }
   else if(!undecided.empty())
     search.search_subset(undecided, radius);
