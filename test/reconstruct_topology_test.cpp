@@ -940,20 +940,22 @@ struct Recording_visitor
   void on_ambiguous_site(std::size_t v) { told.push_back({5, v, 0, 0}); }
 };
 
+// A soup to repair, its name for the trace and the tolerance it is repaired with.
+struct Named_soup
+{
+  std::string name;
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  double tolerance;
+};
+
 // On a soup read exactly welded, the entry point that trusts the weld tells a visitor the same
 // welds, refusals, splits and sites, with the same indices of the input, as the public function
 // (which carries the index of every point from its own weld); the output is the same. Real
 // meshes, and bunny00 cut into patches with T-junctions and jittered copies of their borders.
 TEST(ReconstructTopology, Issue13WeldedSoupEntryTellsTheVisitorTheSameIndices)
 {
-  struct Input
-  {
-    std::string name;
-    std::vector<Point> points;
-    std::vector<Triangle> triangles;
-    double tolerance;
-  };
-  std::vector<Input> inputs;
+  std::vector<Named_soup> inputs;
   for(const auto& [file, tolerance] : std::vector<std::pair<std::string, double>>{{"cgal_repair/pig.stl.xz", 0.3},
                                                                                    {"cad/ALSTOM_TEST4.off", 1e-3}}) {
     auto [points, triangles] = load<Point>(file);
@@ -965,7 +967,7 @@ TEST(ReconstructTopology, Issue13WeldedSoupEntryTellsTheVisitorTheSameIndices)
     auto soup = soup_test::t_junction_soup(points, triangles, 5, 1e-7 * diag / std::sqrt(3.0), 17);
     inputs.push_back({"bunny00 with T-junctions", soup.points, soup.triangles, 1e-6 * diag});
   }
-  for(Input& in : inputs) {
+  for(Named_soup& in : inputs) {
     SCOPED_TRACE(in.name);
     auto p2 = in.points;
     auto t2 = in.triangles;
@@ -1023,6 +1025,8 @@ TEST(ReconstructTopology, Issue13ShuffledExplodedSoupGivesTheSameSurface)
 // Per-vertex tolerances (`vertex_tolerance_map`) in the T-junction split and the pipeline.
 namespace tolerance_map {
 
+using issue13::Named_soup;
+
 using ST::Reconstruction_report;
 using issue13::Recording_visitor;
 
@@ -1069,14 +1073,7 @@ TEST(VertexToleranceMap, TJunctionNeedsTheSmallestToleranceOfTheVertexAndTheEdge
 // meshes and on the generated soups.
 TEST(VertexToleranceMap, ConstantMapRepairsAsOneToleranceOnRealAndGeneratedSoups)
 {
-  struct Input
-  {
-    std::string name;
-    std::vector<Point> points;
-    std::vector<Triangle> triangles;
-    double tolerance;
-  };
-  std::vector<Input> inputs;
+  std::vector<Named_soup> inputs;
   {
     auto [points, triangles] = load<Point>("cgal_repair/pig.stl.xz");
     inputs.push_back({"pig", points, triangles, 0.3});
@@ -1095,7 +1092,7 @@ TEST(VertexToleranceMap, ConstantMapRepairsAsOneToleranceOnRealAndGeneratedSoups
     auto f_soup = soup_test::small_feature_soup(points, triangles, 10, jitter, 0.5, 8 * jitter, 3);
     inputs.push_back({"elephant with small features", f_soup.points, f_soup.triangles, 8 * jitter});
   }
-  for(const Input& in : inputs) {
+  for(const Named_soup& in : inputs) {
     SCOPED_TRACE(in.name);
     const std::vector<double> constant(in.points.size(), in.tolerance);
     auto p1 = in.points, p2 = in.points;
@@ -1119,7 +1116,7 @@ TEST(VertexToleranceMap, ConstantMapRepairsAsOneToleranceOnRealAndGeneratedSoups
     EXPECT_EQ(r1.refused_welds(), r2.refused_welds());
   }
   // Into a FaceGraph (the second overload): the same mesh.
-  const Input& pig = inputs[0];
+  const Named_soup& pig = inputs[0];
   const std::vector<double> constant(pig.points.size(), pig.tolerance);
   Mesh m1, m2;
   const Reconstruction_report r1 =
