@@ -17,6 +17,7 @@
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/tolerance_graph.h>
 
 #include "soup_generators.h"
 #include "test_utilities.h"
@@ -439,6 +440,64 @@ TEST(ParallelRobustnessSoup, SubdividedTJunctionSoupOverManyBlocks)
   });
 }
 
+TEST(ParallelUnionFind, ConcurrentUnionsGiveTheSequentialSetsAndRoots)
+{
+  // Random unions (long chains and many small sets) from all threads at once: the same sets,
+  // each with its smallest element as root, as the sequential union-find.
+  const std::uint32_t n = 200000;
+  std::mt19937 rng(3);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for(std::uint32_t i = 0; i + 1 < n; i += 2 + rng() % 5) pairs.emplace_back(i, i + 1 + rng() % 3);
+  for(int k = 0; k < 150000; ++k) pairs.emplace_back(rng() % n, rng() % n);
+  for(auto& [a, b] : pairs) b = std::min(b, n - 1);
+  ST::internal::Union_find expected(n);
+  for(const auto& [a, b] : pairs) expected.unite(a, b);
+  for_each_thread_count([&](int) {
+    ST::internal::Concurrent_union_find concurrent(n);
+    ST::internal::for_each_index<Parallel>(pairs.size(), [&](std::size_t k) { concurrent.unite(pairs[k].first, pairs[k].second); }, 1024);
+    ST::internal::Union_find sets;
+    concurrent.into(sets);
+    std::size_t different = 0;
+    for(std::uint32_t i = 0; i < n; ++i) different += sets.find(i) != expected.find(i);
+    EXPECT_EQ(different, 0u);
+  });
+}
+
+TEST(ParallelRobustnessSoup, ClustersWithRefusalsAndCollapsesOverManyBlocks)
+{
+  // The clusters are formed by blocks of whole components. A small-feature soup (seams split
+  // near an end: two vertices of one triangle within the tolerance) with every seam copy
+  // jittered: same-triangle refusals (REFUSE) or collapsed triangles (COLLAPSE) in many blocks.
+  // Each policy gives the sequential triangles, report and visitor calls in the same order.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  const double eps = 1e-4 * diagonal(m.points);
+  auto soup = soup_test::small_feature_soup(m.points, m.triangles, 400, 0.05 * eps, 0.5, eps, 41);
+  ASSERT_GT(soup.near_end_t_junctions, 1000u);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    SCOPED_TRACE(policy == ST::Small_features::REFUSE ? "refuse" : "collapse");
+    auto et = soup.triangles;
+    Recording_visitor expected_calls;
+    const ST::Snap_report expected = ST::snap_vertices(
+      soup.points, et, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(expected_calls))));
+    ASSERT_GT(expected.candidate_vertices, 4u * 4096u);
+    ASSERT_GT(expected.merged_vertices, 1000u);
+    ASSERT_GT(policy == ST::Small_features::REFUSE ? expected.refused_same_triangle : expected.collapsed_triangles, 100u);
+    for_each_thread_count([&](int) {
+      auto t = soup.triangles;
+      Recording_visitor calls;
+      const ST::Snap_report r = ST::snap_vertices<Parallel>(
+        soup.points, t, ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(calls))));
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(std::make_pair(r.collapsed_triangles, r.small_features_resolved),
+                std::make_pair(expected.collapsed_triangles, expected.small_features_resolved));
+      EXPECT_EQ(t, et);
+      EXPECT_EQ(calls.calls, expected_calls.calls);
+    });
+  }
+}
+
 /// `triangles` with some repeated (in both orientations, some three times more), some reversed,
 /// every triangle rotated, all shuffled.
 std::vector<Triangle> with_repeats_and_reversals(const std::vector<Triangle>& triangles, unsigned seed)
@@ -459,10 +518,10 @@ std::vector<Triangle> with_repeats_and_reversals(const std::vector<Triangle>& tr
 TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
 {
   // A soup large enough for many blocks of triangles and of vertices: the repaired T-junction
-  // soup of the elephant split twice, with repeated and reversed triangles; beside it 40 shells
+  // soup of the elephant split twice, with repeated and reversed triangles; beside it 16 shells
   // of the elephant in pairs, one scaled by half about the centroid (mostly inside the other),
-  // each reversed at random, and
-  // 3,000 loose triangles (patches of their own): many closed patches whose volumes and nesting
+  // each reversed at random, and 3,000 loose triangles (patches of their own): many closed
+  // patches whose volumes and nesting
   // depths are computed per patch, many open ones. Every thread count gives the sequential
   // result, with and without the tables at hand.
   Mesh_data m = load("clean/elephant.off");
@@ -478,7 +537,7 @@ TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
   double c[3] = {0, 0, 0};
   for(const Point& p : shell.points)
     for(int i = 0; i < 3; ++i) c[i] += p[i] / double(shell.points.size());
-  for(int k = 0; k < 40; ++k) {
+  for(int k = 0; k < 16; ++k) {
     const double scale = k % 2 ? 0.5 : 1.0, dx = 2 * d * (k / 2 + 1);
     const std::size_t offset = points.size();
     for(const Point& p : shell.points)

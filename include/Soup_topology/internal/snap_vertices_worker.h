@@ -12,6 +12,7 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Octree.h>
 #include <Soup_topology/internal/exact_signs.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance_graph.h>
 
@@ -20,13 +21,16 @@
 #include <CGAL/property_map.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <iterator>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <type_traits>
 #include <utility>
@@ -151,6 +155,8 @@ class Snap_vertices_worker
 
   static constexpr size_type none = static_cast<size_type>(-1);
   static constexpr std::uint32_t not_candidate = static_cast<std::uint32_t>(-1);
+  struct Cluster_block;   // what a block of components gives back (below)
+  struct Cluster_scratch; // what forming one cluster after another reuses (below)
 
 public:
   /// \param points the points of the soup, read once through the point map
@@ -322,7 +328,8 @@ private:
   // once each.
   void find_same_triangle_pairs()
   {
-    std::vector<std::uint32_t> local(points_.size(), not_candidate);
+    std::vector<std::uint32_t>& local = candidate_of_;
+    local.assign(points_.size(), not_candidate);
     for(std::size_t c = 0; c < candidates_.size(); ++c) local[candidates_[c]] = static_cast<std::uint32_t>(c);
     const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
     const FT eps2 = eps_ * eps_;
@@ -344,35 +351,92 @@ private:
   }
 
   // The octree's self-join: unites every pair within the tolerance and fills the rows of
-  // neighbours (in Morton order, then indexed by candidate), leaving out same-triangle pairs.
+  // neighbours (each row in increasing order of its candidates), leaving out same-triangle pairs.
+  // A row depends on its candidate's neighbourhood only, and the union-find links every root
+  // under the smaller one, so that a component's root is its smallest candidate whatever the
+  // order of the unions: with the tag and double coordinates the neighbourhoods are handed over
+  // on the threads that find them, each thread writes the rows it is given into a buffer of its
+  // own and unites concurrently, and the rows and the components are those of one thread.
   void join_neighborhoods()
   {
     const std::size_t n = candidates_.size();
     row_start_.resize(n);
     row_end_.resize(n);
+    rows_.assign(1, {});
+    row_buffer_.clear();
+    if constexpr(std::is_same<FT, double>::value) {
+      if(parallel_) {
+        join_neighborhoods_concurrently();
+        return;
+      }
+    }
+    std::vector<std::uint32_t>& row = rows_[0];
     std::vector<char> mate(points_.size(), 0);
     auto mark_mates = [&](std::size_t c, char value) {
       for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
         for(size_type v : tables_.triangle(t)) mate[v] = value;
     };
-    // With the tag the octree finds the neighborhoods in parallel; the calls come in the same order.
-    auto join = [&](std::size_t c, const std::vector<std::size_t>& found) {
+    tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
       if(!collapse_) mark_mates(c, 1);
-      row_start_[c] = row_.size();
+      row_start_[c] = row.size();
       for(std::size_t d : found) {
         if(d == c) continue;
         // The octree lists the candidates within the largest tolerance; the pair rule decides.
         if(tolerances_ != nullptr && !within_pair_tolerance(candidates_[c], candidates_[d])) continue;
         components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
-        if(collapse_ || !mate[candidates_[d]]) row_.push_back(static_cast<std::uint32_t>(d));
+        if(collapse_ || !mate[candidates_[d]]) row.push_back(static_cast<std::uint32_t>(d));
       }
-      row_end_[c] = row_.size();
+      row_end_[c] = row.size();
       if(!collapse_) mark_mates(c, 0);
+    });
+  }
+
+  // `join_neighborhoods()` on TBB's threads. The vertices that share a triangle with a candidate
+  // are listed and sorted per candidate (no array over all the points per thread).
+  void join_neighborhoods_concurrently()
+  {
+    const std::size_t n = candidates_.size();
+    Concurrent_union_find components(n);
+    row_buffer_.resize(n);
+    std::mutex buffers_mutex;
+    // A new id per call: the buffer a thread remembers belongs to this call only if it holds it.
+    static std::atomic<std::uint64_t> calls{0};
+    const std::uint64_t call = ++calls;
+    struct Thread_rows
+    {
+      std::uint64_t call = 0;
+      std::uint32_t buffer = 0;
+      std::vector<std::uint32_t>* row = nullptr; // rows_[buffer] (a deque: it stays where it is)
+      std::vector<size_type> mates;
     };
-    if(parallel_)
-      tree_->template for_each_neighborhood<CGAL::Parallel_if_available_tag>(eps_, join);
-    else
-      tree_->for_each_neighborhood(eps_, join);
+    tree_->template for_each_neighborhood_concurrently<CGAL::Parallel_if_available_tag>(
+      eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
+        static thread_local Thread_rows mine;
+        if(mine.call != call) {
+          const std::lock_guard<std::mutex> hold(buffers_mutex);
+          mine.call = call;
+          mine.buffer = static_cast<std::uint32_t>(rows_.size());
+          mine.row = &rows_.emplace_back();
+        }
+        std::vector<std::uint32_t>* const row = mine.row;
+        if(!collapse_) {
+          mine.mates.clear();
+          for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
+            for(size_type v : tables_.triangle(t)) mine.mates.push_back(v);
+          std::sort(mine.mates.begin(), mine.mates.end());
+        }
+        row_buffer_[c] = mine.buffer;
+        row_start_[c] = row->size();
+        for(std::size_t d : found) {
+          if(d == c) continue;
+          if(tolerances_ != nullptr && !within_pair_tolerance(candidates_[c], candidates_[d])) continue;
+          components.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
+          if(collapse_ || !std::binary_search(mine.mates.begin(), mine.mates.end(), candidates_[d]))
+            row->push_back(static_cast<std::uint32_t>(d));
+        }
+        row_end_[c] = row->size();
+      });
+    components.into(components_);
   }
 
   void refuse_same_triangle_pairs()
@@ -387,46 +451,82 @@ private:
   // Clusters: canonical representatives, no chaining, no two vertices of one triangle. The
   // candidates are visited in lexicographic order (ties: index); an unassigned one is the
   // smallest unassigned candidate of its component, and becomes a representative.
+  //
+  // The clusters of a component depend on that component only: its candidates, their triangles
+  // and the moves among them (a member and its neighbours are in one component; a corner of a
+  // triangle around the cluster that is in another component is never in the cluster, and is
+  // recognised as such without reading its target). So the components are taken in the order of
+  // their smallest index, which keeps the memory accesses of neighbouring candidates together,
+  // each in lexicographic order, and cut into blocks of whole components that do not depend on
+  // the number of threads. With the tag (and double coordinates, outside the dense case whose
+  // marks of the representative's mates are shared) the blocks run in parallel, each writing
+  // only what belongs to its components; the refusals told on the way are kept by block and
+  // told, in block order, in the lexicographic order of their representatives, as if the
+  // candidates were all taken in that order: the result is that of one thread.
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
     sort_candidates_lexicographically();
     target_.assign(points_.size(), none);
-    in_cluster_mark_.assign(tables_.number_of_triangles(), static_cast<std::uint32_t>(-1));
     if(dense_) mate_of_.assign(points_.size(), not_candidate);
-    assigned_.assign(n, false);
+    assigned_.assign(n, 0);
     component_size_.assign(n, 0);
     largest_cluster_.assign(n, 0);
-    std::vector<std::uint32_t> root(n);
-    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root[c] = components_.find(c)];
-    // The clusters of a component depend on that component only (its candidates, their
-    // triangles and the moves among them), so the components are taken in the order of their
-    // smallest index, which keeps the memory accesses of neighbouring candidates together, each
-    // in lexicographic order. The refusals told on the way are told in the lexicographic order of
-    // their representatives, as if the candidates were all taken in that order.
-    std::vector<std::uint32_t> visits(n), next_visit(n), rank(n);
+    root_.resize(n);
+    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c] = components_.find(c)];
+    std::vector<std::uint32_t> visits(n), next_visit(n);
+    rank_.resize(n);
     std::uint32_t number_of_visits = 0;
     for(std::uint32_t c = 0; c < n; ++c)
-      if(root[c] == c && component_size_[c] >= 2) { next_visit[c] = number_of_visits; number_of_visits += component_size_[c]; }
+      if(root_[c] == c && component_size_[c] >= 2) { next_visit[c] = number_of_visits; number_of_visits += component_size_[c]; }
     for(std::uint32_t position = 0; position < n; ++position) {
       const std::uint32_t c = lex_order_[position];
-      rank[c] = position;
-      if(component_size_[root[c]] >= 2) visits[next_visit[root[c]]++] = c;
+      rank_[c] = position;
+      if(component_size_[root_[c]] >= 2) visits[next_visit[root_[c]]++] = c;
     }
     visits.resize(number_of_visits);
+    std::vector<std::uint32_t>().swap(next_visit);
+    // Blocks of whole components, of at least `visits_per_block` visits each (the last one may
+    // be smaller): the visits of a component are consecutive.
+    constexpr std::size_t visits_per_block = 4096;
+    std::vector<std::size_t> block_begin{0};
+    for(std::size_t k = 1; k < visits.size(); ++k)
+      if(k - block_begin.back() >= visits_per_block && root_[visits[k]] != root_[visits[k - 1]]) block_begin.push_back(k);
+    block_begin.push_back(visits.size());
+    const std::size_t blocks = block_begin.size() - 1;
+    std::vector<Cluster_block> results(blocks);
+    Scratch_pool pool(tables_.number_of_triangles());
+    auto run_block = [&](std::size_t b) {
+      std::unique_ptr<Cluster_scratch> scratch = pool.acquire();
+      Cluster_block& out = results[b];
+      for(std::size_t k = block_begin[b]; k != block_begin[b + 1]; ++k) {
+        const std::uint32_t rep = visits[k];
+        if(assigned_[rep]) continue;
+        assigned_[rep] = 1;
+        gather_members(rep, *scratch);
+        const std::size_t first_refusal = out.refusals.size();
+        const std::uint32_t cluster_size = join_members(rep, *scratch, out);
+        for(std::size_t r = first_refusal; r < out.refusals.size(); ++r) out.refusals[r].rank = rank_[rep];
+        largest_cluster_[root_[rep]] = std::max(largest_cluster_[root_[rep]], cluster_size);
+      }
+      pool.release(scratch);
+    };
+    if(parallel_ && !dense_ && std::is_same<FT, double>::value)
+      for_each_block<CGAL::Parallel_if_available_tag>(blocks, 1, [&](std::size_t b, std::size_t, std::size_t) { run_block(b); });
+    else
+      for(std::size_t b = 0; b < blocks; ++b) run_block(b);
     deferred_refusals_.clear();
-    for(const std::uint32_t rep : visits) {
-      if(assigned_[rep]) continue;
-      assigned_[rep] = true;
-      gather_members(rep);
-      const std::size_t first_refusal = deferred_refusals_.size();
-      const std::uint32_t cluster_size = join_members(rep);
-      for(std::size_t k = first_refusal; k < deferred_refusals_.size(); ++k) deferred_refusals_[k].rank = rank[rep];
-      largest_cluster_[root[rep]] = std::max(largest_cluster_[root[rep]], cluster_size);
+    for(Cluster_block& block : results) {
+      report_.refused_holds_welds += block.refused_holds_welds;
+      report_.refused_same_triangle += block.refused_same_triangle;
+      deferred_refusals_.insert(deferred_refusals_.end(), block.refusals.begin(), block.refusals.end());
+      std::vector<Deferred_refusal>().swap(block.refusals);
     }
     std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
                      [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
+    std::vector<std::uint32_t>().swap(candidate_of_);
+    std::vector<std::uint32_t>().swap(rank_);
   }
 
   // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
@@ -473,21 +573,25 @@ private:
   }
 
   // The unassigned neighbours of the representative `rep` that share no triangle with it,
-  // nearest first (ties by `Less_xyz_3`), into `members_`.
-  void gather_members(std::uint32_t rep)
+  // nearest first (ties by `Less_xyz_3`), into `scratch.members`.
+  void gather_members(std::uint32_t rep, Cluster_scratch& scratch)
   {
-    members_.clear();
+    std::vector<std::uint32_t>& members = scratch.members;
+    std::vector<std::size_t>& found = scratch.found;
+    std::vector<std::pair<double, std::uint32_t>>& member_distances = scratch.member_distances;
+    members.clear();
     if(dense_) {
       for(size_type t : tables_.triangles_around_vertex(candidates_[rep]))
         for(size_type v : tables_.triangle(t)) mate_of_[v] = rep;
-      found_.clear();
-      tree_->vertices_near_point(candidate_points_[rep], eps_, std::back_inserter(found_));
-      for(std::size_t d : found_)
+      found.clear();
+      tree_->vertices_near_point(candidate_points_[rep], eps_, std::back_inserter(found));
+      for(std::size_t d : found)
         if(d != rep && !assigned_[d] && (collapse_ || mate_of_[candidates_[d]] != rep))
-          members_.push_back(static_cast<std::uint32_t>(d));
+          members.push_back(static_cast<std::uint32_t>(d));
     } else {
+      const std::vector<std::uint32_t>& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]];
       for(std::size_t k = row_start_[rep]; k < row_end_[rep]; ++k)
-        if(!assigned_[row_[k]]) members_.push_back(row_[k]);
+        if(!assigned_[row[k]]) members.push_back(row[k]);
     }
     const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
     const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
@@ -498,9 +602,9 @@ private:
         return (q.x() - center.x()) * (q.x() - center.x()) + (q.y() - center.y()) * (q.y() - center.y()) +
                (q.z() - center.z()) * (q.z() - center.z());
       };
-      member_distances_.clear();
-      for(std::uint32_t m : members_) member_distances_.emplace_back(squared_distance(candidate_points_[m]), m);
-      std::sort(member_distances_.begin(), member_distances_.end(), [&](const auto& a, const auto& b) {
+      member_distances.clear();
+      for(std::uint32_t m : members) member_distances.emplace_back(squared_distance(candidate_points_[m]), m);
+      std::sort(member_distances.begin(), member_distances.end(), [&](const auto& a, const auto& b) {
         const double dq = a.first, dr = b.first;
         if(dq > 1e-250 && dr > 1e-250) {
           if(dq < dr * (1 - 1e-12)) return true;
@@ -510,45 +614,46 @@ private:
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
         return less_xyz(candidate_points_[a.second], candidate_points_[b.second]);
       });
-      for(std::size_t k = 0; k < members_.size(); ++k) members_[k] = member_distances_[k].second;
+      for(std::size_t k = 0; k < members.size(); ++k) members[k] = member_distances[k].second;
     } else {
-      std::sort(members_.begin(), members_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
         const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
                                                             compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
         return less_xyz(candidate_points_[a], candidate_points_[b]);
       });
     }
-    members_.erase(std::unique(members_.begin(), members_.end()), members_.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
   }
 
   // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
-  // a triangle with a vertex already in the cluster (the refusals are told by `form_clusters()`);
-  // returns the size of the cluster.
-  std::uint32_t join_members(std::uint32_t rep)
+  // a triangle with a vertex already in the cluster (the refusals are kept in `out` and told by
+  // `form_clusters()`); returns the size of the cluster.
+  std::uint32_t join_members(std::uint32_t rep, Cluster_scratch& scratch, Cluster_block& out)
   {
     const size_type rep_v = candidates_[rep];
-    ++cluster_id_;
-    for(size_type t : tables_.triangles_around_vertex(rep_v)) in_cluster_mark_[t] = cluster_id_;
+    std::vector<std::uint32_t>& in_cluster_mark = scratch.in_cluster_mark;
+    const std::uint32_t cluster_id = ++scratch.cluster_id;
+    for(size_type t : tables_.triangles_around_vertex(rep_v)) in_cluster_mark[t] = cluster_id;
     std::uint32_t cluster_size = 1;
-    for(std::uint32_t m : members_) {
+    for(std::uint32_t m : scratch.members) {
       const size_type mv = candidates_[m];
       if(fixed_ != nullptr && (*fixed_)[mv]) {
         // mv received welds in an earlier call: it may be a representative, never move.
-        ++report_.refused_holds_welds;
-        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::HOLDS_WELDS});
+        ++out.refused_holds_welds;
+        out.refusals.push_back({0, mv, rep_v, Refusal_reason::HOLDS_WELDS});
         continue;
       }
       bool conflict = false;
       for(size_type t : tables_.triangles_around_vertex(mv))
-        if(in_cluster_mark_[t] == cluster_id_ && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
+        if(in_cluster_mark[t] == cluster_id && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
       if(conflict) {
-        ++report_.refused_same_triangle;
-        deferred_refusals_.push_back({0, mv, rep_v, Refusal_reason::SAME_TRIANGLE});
+        ++out.refused_same_triangle;
+        out.refusals.push_back({0, mv, rep_v, Refusal_reason::SAME_TRIANGLE});
         continue;
       }
-      for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark_[t] = cluster_id_;
-      assigned_[m] = true;
+      for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark[t] = cluster_id;
+      assigned_[m] = 1;
       target_[mv] = rep_v;
       ++cluster_size;
     }
@@ -562,8 +667,16 @@ private:
   {
     const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
     const FT eps2 = eps_ * eps_;
+    const std::uint32_t component = root_[candidate_of_[rep_v]];
     for(size_type w : tables_.triangle(t)) {
-      if(w == mv || (w != rep_v && target_[w] != rep_v)) continue;
+      if(w == mv) continue;
+      if(w != rep_v) {
+        // In the cluster only if merged into `rep_v`, which only a candidate of its component
+        // can be: the target of a vertex of another component is not read (another block may
+        // be writing it).
+        const std::uint32_t cw = candidate_of_[w];
+        if(cw == not_candidate || root_[cw] != component || target_[w] != rep_v) continue;
+      }
       if(tolerances_ != nullptr) {
         if(!within_pair_tolerance(mv, w)) return false;
         continue;
@@ -818,7 +931,10 @@ private:
         for(size_type& v : tr) v = final_vertex(v);
         rewritten.push_back(tr);
       }
-      tables_ = Adjacency_tables(rewritten, points_.size());
+      if(parallel_)
+        tables_ = Adjacency_tables(rewritten, points_.size(), CGAL::Parallel_if_available_tag());
+      else
+        tables_ = Adjacency_tables(rewritten, points_.size());
     }
     const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
     std::vector<char> is_representative(points_.size(), 0);
@@ -886,20 +1002,19 @@ private:
   std::vector<Pair> same_triangle_pairs_;
   Union_find components_;
   bool dense_ = false;
-  bool parallel_ = false; // the neighborhoods are searched in parallel
-  std::vector<std::uint32_t> row_;                      // neighbours of each candidate, by row
+  bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
+  std::deque<std::vector<std::uint32_t>> rows_;         // the rows of neighbours, in one buffer per thread
+  std::vector<std::uint32_t> row_buffer_;               // by candidate: the buffer of its row (empty: the first)
   std::vector<std::size_t> row_start_, row_end_;
   // Clusters.
   std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order
   std::vector<size_type> target_;                       // representative of a merged vertex, or none
-  std::vector<std::uint32_t> in_cluster_mark_;          // triangles around the current cluster
+  std::vector<std::uint32_t> candidate_of_;             // by vertex: its candidate, or not_candidate
+  std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
+  std::vector<std::uint32_t> rank_;                     // by candidate: its position in `lex_order_`
   std::vector<std::uint32_t> mate_of_;                  // vertices sharing a triangle with the representative
-  std::vector<bool> assigned_;
+  std::vector<char> assigned_;                          // by candidate (one byte each: written by blocks in parallel)
   std::vector<std::uint32_t> component_size_, largest_cluster_;
-  std::vector<std::uint32_t> members_;
-  std::vector<std::pair<double, std::uint32_t>> member_distances_; // (squared distance in double, member)
-  std::vector<std::size_t> found_;
-  std::uint32_t cluster_id_ = 0;
   struct Deferred_refusal
   {
     std::uint32_t rank;                                 // of the representative in `lex_order_`
@@ -907,6 +1022,50 @@ private:
     Refusal_reason reason;
   };
   std::vector<Deferred_refusal> deferred_refusals_;     // told at the end of `form_clusters()`
+  // What a block of components gives back: its refusals, in the order met, and their counts.
+  struct Cluster_block
+  {
+    std::vector<Deferred_refusal> refusals;
+    std::size_t refused_holds_welds = 0, refused_same_triangle = 0;
+  };
+  // What forming one cluster after another reuses: the marks of the triangles around the current
+  // cluster (a new id per cluster, so never cleared), the members and the neighbourhood found.
+  struct Cluster_scratch
+  {
+    explicit Cluster_scratch(std::size_t triangles) : in_cluster_mark(triangles, 0) {}
+    std::vector<std::uint32_t> in_cluster_mark;
+    std::uint32_t cluster_id = 0;
+    std::vector<std::uint32_t> members;
+    std::vector<std::pair<double, std::uint32_t>> member_distances; // (squared distance in double, member)
+    std::vector<std::size_t> found;
+  };
+  // The scratches of the blocks running at one time: at most one per thread is ever made.
+  class Scratch_pool
+  {
+  public:
+    explicit Scratch_pool(std::size_t triangles) : triangles_(triangles) {}
+    std::unique_ptr<Cluster_scratch> acquire()
+    {
+      {
+        const std::lock_guard<std::mutex> hold(mutex_);
+        if(!free_.empty()) {
+          std::unique_ptr<Cluster_scratch> s = std::move(free_.back());
+          free_.pop_back();
+          return s;
+        }
+      }
+      return std::make_unique<Cluster_scratch>(triangles_);
+    }
+    void release(std::unique_ptr<Cluster_scratch>& s)
+    {
+      const std::lock_guard<std::mutex> hold(mutex_);
+      free_.push_back(std::move(s));
+    }
+  private:
+    std::size_t triangles_;
+    std::mutex mutex_;
+    std::vector<std::unique_ptr<Cluster_scratch>> free_;
+  };
   // Geometric guard.
   std::vector<size_type> touched_;                      // triangles around a moved vertex
   std::vector<std::pair<size_type, Refusal_reason>> cancelled_;
