@@ -463,6 +463,38 @@ TEST(ParallelUnionFind, ConcurrentUnionsGiveTheSequentialSetsAndRoots)
   });
 }
 
+TEST(ParallelSortByKey, StableAndTheSequentialOrder)
+{
+  // Keys with many repeats (stability shows), some digits shared by all keys (skipped passes),
+  // and enough items for the blocks; then the densest tolerance cell of a clustered cloud.
+  struct Item
+  {
+    std::uint64_t key;
+    std::uint32_t id;
+  };
+  std::mt19937_64 rng(5);
+  std::vector<Item> items((std::size_t(1) << 20) + 4321);
+  for(std::size_t i = 0; i < items.size(); ++i)
+    items[i] = {(std::uint64_t(0xabcd) << 48) | (rng() % 5000) << 20 | (rng() % 3), static_cast<std::uint32_t>(i)};
+  std::vector<Item> expected = items;
+  std::stable_sort(expected.begin(), expected.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+  std::vector<Point> cloud;
+  for(int c = 0; c < 300000; ++c) {
+    const double x = double(rng() % 1000), y = double(rng() % 1000), z = double(rng() % 1000);
+    for(int k = 0; k < 1 + c % 7; ++k) cloud.emplace_back(x + 1e-4 * k, y, z - 1e-4 * k);
+  }
+  const std::size_t expected_cell = ST::internal::largest_tolerance_cell(cloud, 0.01);
+  ASSERT_GE(expected_cell, 7u);
+  for_each_thread_count([&](int) {
+    std::vector<Item> sorted = items, buffer;
+    ST::internal::sort_by_key<Parallel>(sorted, buffer);
+    std::size_t different = 0;
+    for(std::size_t i = 0; i < sorted.size(); ++i) different += sorted[i].id != expected[i].id;
+    EXPECT_EQ(different, 0u);
+    EXPECT_EQ(ST::internal::largest_tolerance_cell<Parallel>(cloud, 0.01), expected_cell);
+  });
+}
+
 TEST(ParallelRobustnessSoup, ClustersWithRefusalsAndCollapsesOverManyBlocks)
 {
   // The clusters are formed by blocks of whole components. A small-feature soup (seams split

@@ -316,7 +316,9 @@ private:
     // joins whole cells and two cells by their nearest pair, which is right for one tolerance
     // only: with per-vertex tolerances it is not used (every pair is listed by the self-join and
     // decided by the pair rule).
-    dense_ = tolerances_ == nullptr && largest_tolerance_cell(candidate_points_, eps_) > dense_cell_size;
+    dense_ = tolerances_ == nullptr &&
+             (parallel_ ? largest_tolerance_cell<CGAL::Parallel_if_available_tag>(candidate_points_, eps_)
+                        : largest_tolerance_cell(candidate_points_, eps_)) > dense_cell_size;
     if(dense_)
       Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
     else
@@ -547,7 +549,10 @@ private:
       struct Item { std::uint64_t key; std::uint32_t id; };
       std::vector<Item> items(n), buffer;
       for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_points_[c].x()), static_cast<std::uint32_t>(c)};
-      radix_sort_by_key(items, buffer);
+      if(parallel_)
+        sort_by_key<CGAL::Parallel_if_available_tag>(items, buffer);
+      else
+        radix_sort_by_key(items, buffer);
       for(std::size_t i = 0; i < n;) {
         std::size_t j = i + 1;
         while(j < n && items[j].key == items[i].key) ++j;

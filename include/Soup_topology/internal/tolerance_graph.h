@@ -8,6 +8,7 @@
 #define SOUP_TOPOLOGY_INTERNAL_TOLERANCE_GRAPH_H
 
 #include <Soup_topology/Octree.h>
+#include <Soup_topology/internal/parallel.h>
 
 #include <CGAL/number_utils.h>
 #include <CGAL/property_map.h>
@@ -135,6 +136,50 @@ void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsi
   }
 }
 
+/// `radix_sort_by_key()`, on TBB's threads when `ConcurrencyTag` asks for it and the items are
+/// many: each pass counts the digits of 16 blocks of items in parallel, places the items of a
+/// block after those of the blocks before it with the same digit, and scatters the blocks in
+/// parallel. A stable sort by key has one result: it is that of `radix_sort_by_key()`.
+template <class ConcurrencyTag, class Item>
+void sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+{
+  const std::size_t n = items.size();
+  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    if(n >= (std::size_t(1) << 20)) {
+      constexpr std::size_t digits = std::size_t(1) << 16;
+      const std::size_t block_size = (n + 15) / 16, blocks = number_of_blocks(n, block_size);
+      buffer.resize(n);
+      std::vector<std::size_t> offset(blocks * digits); // by block, then digit
+      for(unsigned shift = 0; shift < bits; shift += 16) {
+        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+          std::size_t* const count = offset.data() + b * digits;
+          std::fill(count, count + digits, 0);
+          for(std::size_t i = begin; i != end; ++i) ++count[(items[i].key >> shift) & 0xffff];
+        });
+        const std::size_t first_digit = (items[0].key >> shift) & 0xffff;
+        std::size_t with_first_digit = 0;
+        for(std::size_t b = 0; b < blocks; ++b) with_first_digit += offset[b * digits + first_digit];
+        if(with_first_digit == n) continue; // one digit for all: already in order
+        std::size_t sum = 0;
+        for(std::size_t d = 0; d < digits; ++d)
+          for(std::size_t b = 0; b < blocks; ++b) {
+            std::size_t& c = offset[b * digits + d];
+            const std::size_t here = c;
+            c = sum;
+            sum += here;
+          }
+        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+          std::size_t* const next = offset.data() + b * digits;
+          for(std::size_t i = begin; i != end; ++i) buffer[next[(items[i].key >> shift) & 0xffff]++] = items[i];
+        });
+        items.swap(buffer);
+      }
+      return;
+    }
+  }
+  radix_sort_by_key(items, buffer, bits);
+}
+
 /// the placement of the cells of a `Tolerance_grid`: the cell of a point of approximate
 /// coordinates c is floor((c - origin) / side) on each axis.
 struct Tolerance_grid_frame
@@ -193,8 +238,9 @@ std::array<double, 3> approximate_coordinates(const Point& p)
 
 /// the number of points of the most populated cell of the `Tolerance_grid` of `points` for the
 /// tolerance `eps` (0 when that grid is not usable): its `largest_cell()`, found from the cell
-/// indices alone, without the cells.
-template <class Point, class FT>
+/// indices alone, without the cells; computed and sorted on TBB's threads when `ConcurrencyTag`
+/// asks for it (the same count).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class FT>
 std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& eps)
 {
   const std::size_t n = points.size();
@@ -207,11 +253,11 @@ std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& e
     // Three indices of 21 bits in one integer, sorted by radix.
     struct Item { std::uint64_t key; };
     std::vector<Item> keys(n), buffer;
-    for(std::size_t i = 0; i < n; ++i) {
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
       const std::array<std::int64_t, 3> k = frame.key(approximate_coordinates(points[i]));
       keys[i].key = (std::uint64_t(k[0]) << 42) | (std::uint64_t(k[1]) << 21) | std::uint64_t(k[2]);
-    }
-    radix_sort_by_key(keys, buffer, 63);
+    });
+    sort_by_key<ConcurrencyTag>(keys, buffer, 63);
     for(std::size_t i = 0; i < n;) {
       std::size_t j = i + 1;
       while(j < n && keys[j].key == keys[i].key) ++j;
