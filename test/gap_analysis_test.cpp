@@ -691,6 +691,28 @@ TEST(GapAnalysis, ToolRepairsEachPartWithItsOwnTolerance)
   std::filesystem::remove_all(dir);
 }
 
+// A soup too crowded to analyse is refused by both automatic choices of the tool with the same
+// advice (give the tolerance by hand), and nothing is written.
+TEST(GapAnalysis, ToolRefusesACrowdedSoupUnderAutoAndPerPartWithTheSameAdvice)
+{
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  Soup s;
+  soup_test::crowded_scattered_soup(20000, s.points, s.triangles);
+  const std::string dir = soup_test::temporary_folder("crowded_automatic_tolerance");
+  write_off(dir + "/crowded.off", s);
+  for(const std::string choice : {"auto", "per-part"}) {
+    SCOPED_TRACE(choice);
+    const auto [message, code] = soup_test::run_command(cli() + " repair '" + dir + "/crowded.off' -o '" + dir +
+                                                        "/repaired.off' --tolerance " + choice + " 2>&1");
+    EXPECT_EQ(code, 2) << message;
+    EXPECT_NE(message.find("--tolerance " + choice + ": gap analysis:"), std::string::npos) << message;
+    EXPECT_NE(message.find("too crowded"), std::string::npos) << message;
+    EXPECT_NE(message.find("with --tolerance T (see 'soup_topology gaps')"), std::string::npos) << message;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/repaired.off"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
 } // namespace
 
 } // namespace gap_analysis_test

@@ -474,7 +474,12 @@ ST::Reconstruction_report reconstruct(const Repair_options& o, std::vector<Point
   if(o.per_part) {
     // Each part of the soup gets the tolerance its own analysis suggests (0 for a part without
     // suggestion: only exact duplicates there), and two points weld within the smaller of theirs.
-    const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part<Concurrency>(points, triangles);
+    std::vector<ST::Part_gap_analysis> parts;
+    try {
+      parts = ST::analyze_gaps_per_part<Concurrency>(points, triangles);
+    } catch(const ST::Invalid_input& e) {
+      throw std::runtime_error(std::string("--tolerance per-part: ") + e.what() + " with --tolerance T (see 'soup_topology gaps')");
+    }
     const std::vector<double> tolerances = ST::per_part_vertex_tolerances(parts, points.size());
     ST::Reconstruction_report r = ST::internal::reconstruct_exactly_welded_soup<Concurrency>(
       points, triangles, ST::parameters::small_features(o.small_features, ST::parameters::do_split_t_junctions(
