@@ -553,9 +553,8 @@ TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
   // soup of the elephant split twice, with repeated and reversed triangles; beside it 16 shells
   // of the elephant in pairs, one scaled by half about the centroid (mostly inside the other),
   // each reversed at random, and 3,000 loose triangles (patches of their own): many closed
-  // patches whose volumes and nesting
-  // depths are computed per patch, many open ones. Every thread count gives the sequential
-  // result, with and without the tables at hand.
+  // patches whose volumes and nesting depths are computed per patch, many open ones. Every thread
+  // count gives the sequential result, with and without the tables at hand.
   Mesh_data m = load("clean/elephant.off");
   const Mesh_data shell = m;
   soup_test::subdivide_midpoints(m.points, m.triangles);
