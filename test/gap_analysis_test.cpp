@@ -691,6 +691,28 @@ TEST(GapAnalysis, ToolRepairsEachPartWithItsOwnTolerance)
   std::filesystem::remove_all(dir);
 }
 
+// An assembly of many parts: the report lists the ten largest parts and sums up the others,
+// and every seam is still closed with its own part's tolerance.
+TEST(GapAnalysis, ToolListsTenPartsAndSumsUpTheOthers)
+{
+  if(cli().empty()) GTEST_SKIP() << "the tool is not built";
+  Soup s;
+  for(int k = 0; k < 13; ++k) add_two_squares(s, 0.01 * (k + 1), 1e-6 * (k + 1), 100.0 * k);
+  const std::string dir = soup_test::temporary_folder("many_parts_tolerance");
+  write_off(dir + "/parts.off", s);
+  const auto [json, code] = soup_test::run_command(cli() + " repair '" + dir + "/parts.off' -o '" + dir +
+                                                   "/repaired.off' --tolerance per-part --json");
+  ASSERT_EQ(code, 0) << json;
+  EXPECT_EQ(soup_test::json_integer(json, "snapped_vertices"), 2 * 13) << json;
+  EXPECT_NE(json.find("\"tolerance_choice\": \"per part: 13 parts: 4 triangles, tolerance "), std::string::npos) << json;
+  EXPECT_NE(json.find("; 3 more parts, 3 with a suggestion, tolerances "), std::string::npos) << json;
+  std::size_t listed = 0;
+  for(std::size_t at = json.find("triangles, tolerance "); at != std::string::npos; at = json.find("triangles, tolerance ", at + 1))
+    ++listed;
+  EXPECT_EQ(listed, 10u) << json;
+  std::filesystem::remove_all(dir);
+}
+
 // A soup too crowded to analyse is refused by both automatic choices of the tool with the same
 // advice (give the tolerance by hand), and nothing is written.
 TEST(GapAnalysis, ToolRefusesACrowdedSoupUnderAutoAndPerPartWithTheSameAdvice)

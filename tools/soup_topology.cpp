@@ -430,16 +430,32 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
 }
 
 // What --tolerance per-part chose, in words: the parts (largest first), each with its tolerance
-// and its verdict.
-std::string per_part_choice(const std::vector<ST::Part_gap_analysis>& parts)
+// and its verdict; past the first `listed` parts (an assembly may have thousands), their number
+// and the range of their tolerances only, so that the report stays short.
+std::string per_part_choice(const std::vector<ST::Part_gap_analysis>& parts, std::size_t listed = 10)
 {
   std::string text = std::to_string(parts.size()) + (parts.size() == 1 ? " part" : " parts");
   char buffer[64];
-  for(std::size_t k = 0; k < parts.size(); ++k) {
+  auto tolerance = [](const ST::Part_gap_analysis& p) {
+    return p.verdict == ST::Gap_verdict::SUGGESTED ? p.suggested_tolerance : 0.0;
+  };
+  for(std::size_t k = 0; k < std::min(parts.size(), listed); ++k) {
     const ST::Part_gap_analysis& p = parts[k];
-    std::snprintf(buffer, sizeof buffer, "%.3g", p.verdict == ST::Gap_verdict::SUGGESTED ? p.suggested_tolerance : 0.0);
+    std::snprintf(buffer, sizeof buffer, "%.3g", tolerance(p));
     text += std::string(k == 0 ? ": " : "; ") + std::to_string(p.triangles) + " triangles, tolerance " + buffer + " (" +
             ST::verdict_name(p.verdict) + ")";
+  }
+  if(parts.size() > listed) {
+    double smallest = tolerance(parts[listed]), largest = smallest;
+    std::size_t suggested = 0;
+    for(std::size_t k = listed; k < parts.size(); ++k) {
+      smallest = std::min(smallest, tolerance(parts[k]));
+      largest = std::max(largest, tolerance(parts[k]));
+      suggested += parts[k].verdict == ST::Gap_verdict::SUGGESTED ? 1 : 0;
+    }
+    std::snprintf(buffer, sizeof buffer, "%.3g to %.3g", smallest, largest);
+    text += "; " + std::to_string(parts.size() - listed) + " more parts, " + std::to_string(suggested) +
+            " with a suggestion, tolerances " + buffer;
   }
   return text;
 }
