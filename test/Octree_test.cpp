@@ -767,6 +767,34 @@ TEST(Octree, SegmentJoinMatchesSegmentQueries)
   }
 }
 
+// A grid of short segments beside a crowd: the short segments of a leaf share the candidates of
+// the union of their boxes, except near the crowd, where that union holds too many points and
+// each segment is queried alone; the long segments are queried alone everywhere. Every way
+// answers what the single queries and the brute force answer.
+std::vector<Xyz> grid_beside_a_crowd(unsigned seed, int side, int crowd)
+{
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(-1e-7, 1e-7);
+  std::vector<Xyz> r;
+  for(int i = 0; i < side; ++i)
+    for(int j = 0; j < side; ++j)
+      r.push_back({0.01 * i + u(gen), 0.01 * j + u(gen), u(gen)});
+  for(int k = 0; k < crowd; ++k)
+    r.push_back({0.2 + u(gen), 0.2 + u(gen), 0.002 + u(gen)});
+  std::shuffle(r.begin(), r.end(), gen);
+  return r;
+}
+
+TEST(Octree, SegmentJoinBesideACrowdMatchesSegmentQueries)
+{
+  for(const auto strategy : {ST::Segment_query_strategy::INDEX_SPACE_BOX, ST::Segment_query_strategy::NEIGHBORHOOD_CULLING})
+  {
+    check_segment_join<Epick>(grid_beside_a_crowd(56, 30, 300), 8, strategy);
+    check_segment_join<Epick>(grid_beside_a_crowd(57, 30, 300), 32, strategy);
+    check_segment_join<Epeck>(grid_beside_a_crowd(58, 20, 200), 16, strategy);
+  }
+}
+
 TEST(Octree, SegmentJoinRejectsIndicesOutOfRange)
 {
   const std::vector<Epick::Point_3> pts = to_points<Epick>(uniform_points(10, 55));

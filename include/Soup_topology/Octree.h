@@ -383,10 +383,13 @@ public:
   /// between them, in increasing order: the answers of `vertices_near_segment()` for all the
   /// segments at once, with the strategy chosen at construction. The segments are visited in
   /// the Morton order of their first ends (the segments of one first end in the order of
-  /// `segments`). A query starts from the smallest box around the leaf of its first end that
-  /// holds the segment grown by the radius, not from the root: when the segments are short
-  /// against the leaves, as the border edges of a soup are against a tree of their ends, most
-  /// queries scan one leaf or a few. The decisions are the same as in `vertices_near_segment()`.
+  /// `segments`). The segments of one leaf that are short beside it (the box of their
+  /// candidates no wider than the leaf's cell), as the border edges of a soup are against a tree
+  /// of their ends, share their candidates: the points of the union of their boxes, gathered by
+  /// one descent, each then tested against each segment. The other segments, and all those of a
+  /// leaf whose union holds a crowd, are queried one by one, each from the smallest box around the
+  /// leaf of its first end that holds the segment grown by the radius, not from the root. The
+  /// decisions are the same as in `vertices_near_segment()`, so are the answers.
   /// \tparam SegmentRange a random-access range whose elements `e` give the ends as `e[0]`
   ///         and `e[1]` (e.g. `std::vector<std::array<std::size_t, 2>>`)
   /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
@@ -401,10 +404,9 @@ public:
     const Segments_by_first_end by_first = segments_by_first_end(segments);
     if(by_first.order.empty())
       return;
-    std::array<Frame, largest_maximum_depth + 1> path;
-    std::vector<std::size_t> near;
+    Segment_scratch scratch;
     traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      segments_of_leaf(f, nd, by_first, radius, path, near, callback);
+      segments_of_leaf(f, nd, by_first, radius, scratch, callback);
     });
   }
 
@@ -468,10 +470,9 @@ public:
         return by_first.bucket[nd.end] - by_first.bucket[nd.begin];
       });
       internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
-        std::array<Frame, largest_maximum_depth + 1> path;
-        std::vector<std::size_t> near;
+        Segment_scratch scratch;
         for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
-          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, path, near, callback);
+          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, scratch, callback);
       });
     }
     else
@@ -654,6 +655,72 @@ private:
 
   enum class Child_order { OCTANT, NEAREST_FIRST };
 
+  // One segment query prepared: the approximate segment, the widened radius of its pruning and
+  // the box of its candidates, and what the exact decision needs.
+  struct Segment_query
+  {
+    Query_point aa, ba;             // the ends, approximated
+    Segment_approx s;
+    double bound = 0, bound2 = 0;   // the radius widened by every error of the double computations
+    std::array<double, 3> lo, hi;   // the box of the approximate ends
+    double box_lo[3], box_hi[3];    // that box grown by the bound and the margin: every point within the radius lies in it
+    double r2d = 0;                 // the squared radius in double (with double coordinates)
+  };
+
+  Segment_query prepare_segment_query(const Point_3& a, const Point_3& b, const FT& r2) const
+  {
+    Segment_query q;
+    q.aa = approximate(a);
+    q.ba = approximate(b);
+    double len2 = 0;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      q.s.a[i] = q.aa.c[i];
+      q.s.d[i] = q.ba.c[i] - q.aa.c[i];
+      len2 += q.s.d[i] * q.s.d[i];
+    }
+    q.s.len2 = len2;
+    const double len = std::sqrt(len2);
+    const double rhi = radius_bound(r2, 0);
+    // the double point-segment distance may be off by a few ulps of (length + distance); a
+    // segment whose squared length underflows is treated as the point a (error at most len)
+    q.bound = (rhi + 2 * std::max(q.aa.err, q.ba.err) + 1e-10 * (len + rhi) +
+               (len2 < 1e-280 ? len : 0.)) * (1 + 1e-12);
+    q.bound2 = q.bound * q.bound;
+    for(std::size_t i = 0; i < 3; ++i)
+    {
+      q.lo[i] = std::min(q.aa.c[i], q.ba.c[i]);
+      q.hi[i] = std::max(q.aa.c[i], q.ba.c[i]);
+      // a point within the radius of the segment lies in the box of its ends grown by the
+      // radius: that box, grown by the bound and the margin of the approximations, rejects most
+      // candidates before their distance is computed
+      q.box_lo[i] = q.lo[i] - q.bound - margin_;
+      q.box_hi[i] = q.hi[i] + q.bound + margin_;
+    }
+    // with double coordinates, a point clearly within the radius is accepted in double
+    q.r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
+    return q;
+  }
+
+  // whether the point stored at `k` is within the radius of the segment `seg` of query `q`: the
+  // decision of every segment query
+  bool is_near_segment(std::uint32_t k, const Segment_query& q, const Segment_3& seg, const FT& r2,
+                       typename Geom_traits::Compare_squared_distance_3& compare_sq) const
+  {
+    if(!in_box(k, q.box_lo, q.box_hi))
+      return false;
+    double scale = 0;
+    const double d2 = point_segment_squared_distance(k, q.s, scale);
+    if(!(d2 <= q.bound2))
+      return false;
+    // with double coordinates, `d2` and `scale` are those of `surely_within_segment(coords(k),
+    // a, b, r2d)` (the same operations on the same numbers), computed once
+    if constexpr(double_coordinates)
+      if(internal::surely_within(d2, scale, q.r2d))
+        return true;
+    return compare_sq(points_[k], seg, r2) != CGAL::LARGER;
+  }
+
   // Appends to `found` (unsorted) the index of every point within `radius` of the segment [a,b]
   // (a != b), visiting the subtree of the frame `start(lo, hi, grow)` only: `lo` and `hi` are the
   // corners of the box of the segment's approximate ends, `grow` the widened radius; the frame
@@ -663,68 +730,31 @@ private:
                          const Start& start, std::vector<std::size_t>& found) const
   {
     const FT r2 = radius * radius;
-    const Query_point aa = approximate(a), ba = approximate(b);
-    Segment_approx s;
-    double len2 = 0;
-    for(std::size_t i = 0; i < 3; ++i)
-    {
-      s.a[i] = aa.c[i];
-      s.d[i] = ba.c[i] - aa.c[i];
-      len2 += s.d[i] * s.d[i];
-    }
-    s.len2 = len2;
-    const double len = std::sqrt(len2);
-    const double rhi = radius_bound(r2, 0);
-    // the double point-segment distance may be off by a few ulps of (length + distance); a
-    // segment whose squared length underflows is treated as the point a (error at most len)
-    double bound = (rhi + 2 * std::max(aa.err, ba.err) + 1e-10 * (len + rhi) +
-                    (len2 < 1e-280 ? len : 0.)) * (1 + 1e-12);
-    const double bound2 = bound * bound;
-
+    const Segment_query q = prepare_segment_query(a, b, r2);
     const Segment_3 seg = gt_.construct_segment_3_object()(a, b);
     typename Geom_traits::Compare_squared_distance_3 compare_sq =
       gt_.compare_squared_distance_3_object();
-
-    std::array<double, 3> lo, hi;
-    for(std::size_t i = 0; i < 3; ++i)
-    {
-      lo[i] = std::min(aa.c[i], ba.c[i]);
-      hi[i] = std::max(aa.c[i], ba.c[i]);
-    }
     // index-space box of the segment grown by the bound (equations (22)-(24))
     Address ilo{}, ihi{};
     if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
     {
       for(std::size_t i = 0; i < 3; ++i)
       {
-        ilo[i] = index_of(lo[i] - bound, i, -1);
-        ihi[i] = index_of(hi[i] + bound, i, +1);
+        ilo[i] = index_of(q.lo[i] - q.bound, i, -1);
+        ihi[i] = index_of(q.hi[i] + q.bound, i, +1);
       }
     }
 
     const auto box_may_meet = [&](const Frame& f, double&) {
       if(strategy == Segment_query_strategy::INDEX_SPACE_BOX)
         return index_range_meets(f, ilo, ihi);
-      return box_meets_segment(f, s, bound);
+      return box_meets_segment(f, q.s, q.bound);
     };
-    // with double coordinates, a point clearly within the radius is accepted in double
-    const double r2d = double_coordinates ? CGAL::to_double(r2) : 0.;
-    // a point within the radius of the segment lies in the box of its ends grown by the radius:
-    // that box, grown by the bound and the margin of the approximations, rejects most points of
-    // the leaves visited before their distance is computed
-    double box_lo[3], box_hi[3];
-    for(std::size_t i = 0; i < 3; ++i)
-    {
-      box_lo[i] = lo[i] - bound - margin_;
-      box_hi[i] = hi[i] + bound + margin_;
-    }
     traverse(box_may_meet, [&](const Frame&, const Node& nd) {
       for(std::uint32_t k = nd.begin; k != nd.end; ++k)
-        if(in_box(k, box_lo, box_hi) && point_segment_squared_distance(k, s) <= bound2 &&
-           ((double_coordinates && internal::surely_within_segment(coords(k), aa.c, ba.c, r2d)) ||
-            compare_sq(points_[k], seg, r2) != CGAL::LARGER))
+        if(is_near_segment(k, q, seg, r2, compare_sq))
           found.push_back(ids_[k]);
-    }, start(lo, hi, bound));
+    }, start(q.lo, q.hi, q.bound));
   }
 
   // the deepest node on the way from the root whose box holds the integer addresses of every
@@ -838,20 +868,76 @@ private:
     return out;
   }
 
-  // The queries of the segments whose first ends lie in the leaf `nd` (frame `f`), each started
-  // from the smallest box around the leaf that holds the segment grown by the radius.
+  // a point of the shared box of a leaf's segments: its approximate coordinates and its position
+  struct Shared_candidate
+  {
+    std::array<double, 3> c;
+    std::uint32_t position;
+  };
+
+  // what the segment queries of one leaf reuse for the next
+  struct Segment_scratch
+  {
+    std::array<Frame, largest_maximum_depth + 1> path; // from the root to the leaf
+    std::vector<Segment_query> queries;                 // the leaf's segments, prepared
+    std::vector<char> shared;                           // whether a query takes the shared candidates
+    std::vector<Shared_candidate> candidates;           // the points in the shared box
+    std::vector<std::size_t> near;                      // the answer of one segment
+  };
+
+  // The queries of the segments whose first ends lie in the leaf `nd` (frame `f`). The segments
+  // short beside the leaf (the box of their candidates no wider than the leaf's cell, the common
+  // case on a mesh) share their candidates: the points of the union of their boxes, gathered by
+  // one traversal, then tested against each segment with the decisions of `scan_near_segment()`
+  // (a point within the radius of a segment lies in that segment's box, hence among them). The
+  // others, and the segments of a leaf whose shared box holds more than `shared_candidate_limit()`
+  // points (a crowd nearby, which every short segment would test), are each queried alone, from
+  // the smallest box around the leaf that holds the segment grown by the radius. The answers are
+  // the same either way.
   template <typename Callback>
   void segments_of_leaf(const Frame& f, const Node& nd, const Segments_by_first_end& by_first, const FT& radius,
-                        std::array<Frame, largest_maximum_depth + 1>& path, std::vector<std::size_t>& near,
-                        Callback& callback) const
+                        Segment_scratch& scratch, Callback& callback) const
   {
     if(by_first.bucket[nd.begin] == by_first.bucket[nd.end])
       return;
-    frames_to_leaf(f, path);
+    frames_to_leaf(f, scratch.path);
+    const FT r2 = radius * radius;
+    const double cell = cell_size_[nd.level];
+    const double infinity = std::numeric_limits<double>::infinity();
+    std::array<double, 3> shared_lo{{infinity, infinity, infinity}}, shared_hi{{-infinity, -infinity, -infinity}};
+    scratch.queries.clear();
+    scratch.shared.clear();
+    bool any_shared = false;
+    for(std::uint32_t k = nd.begin; k != nd.end; ++k)
+      for(std::size_t j = by_first.bucket[k]; j != by_first.bucket[k + 1]; ++j)
+      {
+        const Point_3& b = points_[by_first.second_end[by_first.order[j]]];
+        if(gt_.equal_3_object()(points_[k], b))
+          continue;
+        scratch.queries.push_back(prepare_segment_query(points_[k], b, r2));
+        const Segment_query& q = scratch.queries.back();
+        bool short_segment = true;
+        for(std::size_t i = 0; i < 3; ++i)
+          short_segment = short_segment && q.box_hi[i] - q.box_lo[i] <= cell; // false if not finite
+        scratch.shared.push_back(short_segment);
+        if(!short_segment)
+          continue;
+        any_shared = true;
+        for(std::size_t i = 0; i < 3; ++i)
+        {
+          shared_lo[i] = std::min(shared_lo[i], q.box_lo[i]);
+          shared_hi[i] = std::max(shared_hi[i], q.box_hi[i]);
+        }
+      }
+    const bool sharing = any_shared && gather_shared_candidates(shared_lo, shared_hi, scratch.candidates);
+
     const auto smallest_box_around = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi,
                                          double grow) {
-      return smallest_box_holding(path, nd.level, lo, hi, grow);
+      return smallest_box_holding(scratch.path, nd.level, lo, hi, grow);
     };
+    typename Geom_traits::Compare_squared_distance_3 compare_sq = gt_.compare_squared_distance_3_object();
+    std::vector<std::size_t>& near = scratch.near;
+    std::size_t query = 0;
     for(std::uint32_t k = nd.begin; k != nd.end; ++k)
       for(std::size_t j = by_first.bucket[k]; j != by_first.bucket[k + 1]; ++j)
       {
@@ -862,11 +948,48 @@ private:
           vertices_near_point(b, radius, std::back_inserter(near));
         else
         {
-          scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
+          if(sharing && scratch.shared[query])
+          {
+            const Segment_query& q = scratch.queries[query];
+            const Segment_3 seg = gt_.construct_segment_3_object()(points_[k], b);
+            for(const Shared_candidate& c : scratch.candidates)
+              if(c.c[0] >= q.box_lo[0] && c.c[0] <= q.box_hi[0] && c.c[1] >= q.box_lo[1] && c.c[1] <= q.box_hi[1] &&
+                 c.c[2] >= q.box_lo[2] && c.c[2] <= q.box_hi[2] && is_near_segment(c.position, q, seg, r2, compare_sq))
+                near.push_back(ids_[c.position]);
+          }
+          else
+            scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
+          ++query;
           std::sort(near.begin(), near.end());
         }
         callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
       }
+  }
+
+  // the most points the short segments of one leaf test one by one: beyond it they are queried alone
+  std::size_t shared_candidate_limit() const { return 8 * std::max<std::size_t>(capacity_, 16); }
+
+  // the points in the box [lo, hi] (which holds the margins already), gathered from the deepest
+  // node holding it; false, with the gathering stopped, past
+  // `shared_candidate_limit()` points
+  bool gather_shared_candidates(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
+                                std::vector<Shared_candidate>& candidates) const
+  {
+    candidates.clear();
+    const std::size_t limit = shared_candidate_limit();
+    bool crowded = false;
+    traverse(
+      [&](const Frame& g, double&) { return !crowded && box_meets_box(g, lo.data(), hi.data()); },
+      [&](const Frame&, const Node& c) {
+        for(std::uint32_t j = c.begin; j != c.end && !crowded; ++j)
+          if(in_box(j, lo.data(), hi.data()))
+          {
+            candidates.push_back(Shared_candidate{coords(j), j});
+            crowded = candidates.size() > limit;
+          }
+      },
+      frame_holding_box(lo, hi, 0.));
+    return !crowded;
   }
 
   // The leaves in traversal (Morton) order, cut into groups of about `group_weight` of
@@ -1413,8 +1536,18 @@ private:
 
   double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s) const
   {
+    double scale = 0;
+    return point_segment_squared_distance(k, s, scale);
+  }
+
+  // the squared distance computed in double from the point stored at `k` to the approximate
+  // segment `s` (to its point at the projection parameter computed in double), and in `scale` the
+  // largest absolute coordinate difference of the computation (of `p - a` and of the direction)
+  double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s, double& scale) const
+  {
     const std::array<double, 3> p = coords(k);
     const double v[3] = {p[0] - s.a[0], p[1] - s.a[1], p[2] - s.a[2]};
+    scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2]), std::abs(s.d[0]), std::abs(s.d[1]), std::abs(s.d[2])});
     double t = 0;
     if(s.len2 > 0)
     {

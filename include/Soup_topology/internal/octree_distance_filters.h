@@ -15,6 +15,17 @@
 namespace Soup_topology {
 namespace internal {
 
+/// the decision of `surely_within_segment()` from the squared distance `d2` it computes and its
+/// `scale` (the largest absolute coordinate difference, of `p - a` and of `b - a`): for callers that
+/// computed both the same way already.
+inline bool surely_within(double d2, double scale, double bound2)
+{
+  if(!(bound2 > 1e-200 && bound2 < 1e200) || !(scale < 1e100))
+    return false;
+  const double reach = std::sqrt(d2) + 1e-12 * scale + 1e-150;
+  return reach * reach < bound2 * (1 - 1e-12);
+}
+
 /// `true` if the squared distance from `p` to the closed segment `[a,b]` (exact double
 /// coordinates) is certainly below `bound2`; `false` if that is not proven (ask the exact
 /// predicate then).
@@ -53,8 +64,7 @@ inline bool surely_within_segment(const std::array<double, 3>& p, const std::arr
     const double w = v[i] - t * d[i];
     d2 += w * w;
   }
-  const double reach = std::sqrt(d2) + 1e-12 * scale + 1e-150;
-  return reach * reach < bound2 * (1 - 1e-12);
+  return surely_within(d2, scale, bound2);
 }
 
 } // namespace internal
