@@ -795,6 +795,27 @@ TEST(Octree, SegmentJoinBesideACrowdMatchesSegmentQueries)
   }
 }
 
+// point(i) gives back point i of the range, also after the range is gone (the weld frees its
+// candidates' copy once the tree is built), and refuses an index out of range.
+TEST(Octree, PointByIndexOutlivesTheRange)
+{
+  const std::vector<Xyz> xyz = clustered_points(3000, 59);
+  std::optional<ST::Octree<Epeck>> exact;
+  std::optional<ST::Octree<Epick>> tree;
+  {
+    const std::vector<Epick::Point_3> pts = to_points<Epick>(xyz);
+    const std::vector<Epeck::Point_3> epts = to_points<Epeck>(xyz);
+    tree.emplace(pts, ST::parameters::bucket_capacity(4));
+    exact.emplace(epts);
+  }
+  for(std::size_t i = 0; i < xyz.size(); ++i)
+  {
+    ASSERT_EQ(tree->point(i), Epick::Point_3(xyz[i][0], xyz[i][1], xyz[i][2])) << i;
+    ASSERT_EQ(exact->point(i), Epeck::Point_3(xyz[i][0], xyz[i][1], xyz[i][2])) << i;
+  }
+  EXPECT_THROW(tree->point(xyz.size()), ST::Invalid_input);
+}
+
 TEST(Octree, SegmentJoinRejectsIndicesOutOfRange)
 {
   const std::vector<Epick::Point_3> pts = to_points<Epick>(uniform_points(10, 55));

@@ -486,6 +486,11 @@ public:
 
   /// the number of points
   std::size_t size() const { return ids_.size(); }
+  /// point `i` of the range given at construction, as the tree holds it (its own copy, in
+  /// Morton order: the range may be freed once the tree is built)
+  /// \param i the index of a point in the range given at construction
+  /// \throw Invalid_input if `i` is out of range
+  const Point_3& point(std::size_t i) const { return points_[position(i)]; }
   /// whether the tree holds no point
   bool empty() const { return ids_.empty(); }
   /// the maximum depth `n`: addresses have `n` bits per axis

@@ -201,6 +201,12 @@ public:
 
 private:
   const Point& point(size_type v) const { return points_[v]; }
+  // The point of candidate `c` once the tolerance graph's octree is built (its copy, unless the
+  // candidates' own copy is kept for the grid of a dense cluster).
+  const Point& candidate_point(std::uint32_t c) const
+  {
+    return candidate_points_.empty() ? tree_->point(c) : candidate_points_[c];
+  }
   size_type final_vertex(size_type v) const { return target_[v] == none ? v : target_[v]; }
 
   // With per-vertex tolerances: the squared tolerance of the pair (u, v), min(t_u, t_v)^2.
@@ -309,9 +315,9 @@ private:
     const std::size_t n = candidates_.size();
     candidate_points_.reserve(n);
     for(size_type v : candidates_) candidate_points_.push_back(point(v));
-    tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
-    find_same_triangle_pairs();
-    components_.reset(n);
+    // The order of the clusters, sorted here: its scratch is freed before the octree and the
+    // rows are built (the peak memory of the weld).
+    sort_candidates_lexicographically();
     // The grid's cells are counted first and the grid built only for a dense cluster. The grid
     // joins whole cells and two cells by their nearest pair, which is right for one tolerance
     // only: with per-vertex tolerances it is not used (every pair is listed by the self-join and
@@ -319,6 +325,11 @@ private:
     dense_ = tolerances_ == nullptr &&
              (parallel_ ? largest_tolerance_cell<CGAL::Parallel_if_available_tag>(candidate_points_, eps_)
                         : largest_tolerance_cell(candidate_points_, eps_)) > dense_cell_size;
+    tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
+    // The tree holds the same points: the copy goes, unless the grid of a dense cluster reads it.
+    if(!dense_) std::vector<Point>().swap(candidate_points_);
+    find_same_triangle_pairs();
+    components_.reset(n);
     if(dense_)
       Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
     else
@@ -340,7 +351,7 @@ private:
         const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
         if(a == not_candidate || b == not_candidate) continue;
         if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
-                                  : compare_sq(candidate_points_[a], candidate_points_[b], eps2) != CGAL::LARGER)
+                                  : compare_sq(candidate_point(a), candidate_point(b), eps2) != CGAL::LARGER)
           same_triangle_pairs_.emplace_back(std::min(a, b), std::max(a, b));
       }
     const Octree<Kernel>& tree = *tree_;
@@ -468,7 +479,6 @@ private:
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
-    sort_candidates_lexicographically();
     target_.assign(points_.size(), none);
     if(dense_) mate_of_.assign(points_.size(), not_candidate);
     assigned_.assign(n, 0);
@@ -529,6 +539,18 @@ private:
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
     std::vector<std::uint32_t>().swap(candidate_of_);
     std::vector<std::uint32_t>().swap(rank_);
+    release_tolerance_graph();
+  }
+
+  // The octree, the candidates' points and the rows of the tolerance graph are read by no step
+  // after the clusters: they go before the guard and the application allocate (the peak memory
+  // of a weld that rebuilds its tables).
+  void release_tolerance_graph()
+  {
+    tree_.reset();
+    std::vector<Point>().swap(candidate_points_);
+    std::deque<std::vector<std::uint32_t>>().swap(rows_);
+    std::vector<std::uint32_t>().swap(row_buffer_);
   }
 
   // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
@@ -548,7 +570,7 @@ private:
       };
       struct Item { std::uint64_t key; std::uint32_t id; };
       std::vector<Item> items(n), buffer;
-      for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_points_[c].x()), static_cast<std::uint32_t>(c)};
+      for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_point(c).x()), static_cast<std::uint32_t>(c)};
       if(parallel_)
         sort_by_key<CGAL::Parallel_if_available_tag>(items, buffer);
       else
@@ -559,8 +581,8 @@ private:
         if(j - i > 1)
           std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
                     [&](const Item& a, const Item& b) {
-                      const Point& p = candidate_points_[a.id];
-                      const Point& q = candidate_points_[b.id];
+                      const Point& p = candidate_point(a.id);
+                      const Point& q = candidate_point(b.id);
                       if(p.y() != q.y()) return p.y() < q.y();
                       if(p.z() != q.z()) return p.z() < q.z();
                       return a.id < b.id;
@@ -572,7 +594,7 @@ private:
       const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
       std::iota(lex_order_.begin(), lex_order_.end(), 0u);
       std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return less_xyz(candidate_points_[a], candidate_points_[b]);
+        return less_xyz(candidate_point(a), candidate_point(b));
       });
     }
   }
@@ -589,7 +611,7 @@ private:
       for(size_type t : tables_.triangles_around_vertex(candidates_[rep]))
         for(size_type v : tables_.triangle(t)) mate_of_[v] = rep;
       found.clear();
-      tree_->vertices_near_point(candidate_points_[rep], eps_, std::back_inserter(found));
+      tree_->vertices_near_point(candidate_point(rep), eps_, std::back_inserter(found));
       for(std::size_t d : found)
         if(d != rep && !assigned_[d] && (collapse_ || mate_of_[candidates_[d]] != rep))
           members.push_back(static_cast<std::uint32_t>(d));
@@ -600,7 +622,7 @@ private:
     }
     const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
     const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
-    const Point& center = candidate_points_[rep];
+    const Point& center = candidate_point(rep);
     if constexpr(std::is_same<FT, double>::value) {
       // The order of `compare_distances()`, with the squared distances in double computed once.
       auto squared_distance = [&](const Point& q) {
@@ -608,24 +630,24 @@ private:
                (q.z() - center.z()) * (q.z() - center.z());
       };
       member_distances.clear();
-      for(std::uint32_t m : members) member_distances.emplace_back(squared_distance(candidate_points_[m]), m);
+      for(std::uint32_t m : members) member_distances.emplace_back(squared_distance(candidate_point(m)), m);
       std::sort(member_distances.begin(), member_distances.end(), [&](const auto& a, const auto& b) {
         const double dq = a.first, dr = b.first;
         if(dq > 1e-250 && dr > 1e-250) {
           if(dq < dr * (1 - 1e-12)) return true;
           if(dq > dr * (1 + 1e-12)) return false;
         }
-        const CGAL::Comparison_result r = compare_distance(center, candidate_points_[a.second], candidate_points_[b.second]);
+        const CGAL::Comparison_result r = compare_distance(center, candidate_point(a.second), candidate_point(b.second));
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_xyz(candidate_points_[a.second], candidate_points_[b.second]);
+        return less_xyz(candidate_point(a.second), candidate_point(b.second));
       });
       for(std::size_t k = 0; k < members.size(); ++k) members[k] = member_distances[k].second;
     } else {
       std::sort(members.begin(), members.end(), [&](std::uint32_t a, std::uint32_t b) {
-        const CGAL::Comparison_result r = compare_distances(center, candidate_points_[a], candidate_points_[b],
+        const CGAL::Comparison_result r = compare_distances(center, candidate_point(a), candidate_point(b),
                                                             compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_xyz(candidate_points_[a], candidate_points_[b]);
+        return less_xyz(candidate_point(a), candidate_point(b));
       });
     }
     members.erase(std::unique(members.begin(), members.end()), members.end());
