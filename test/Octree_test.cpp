@@ -645,6 +645,16 @@ void check_self_join(const std::vector<Xyz>& xyz, std::size_t capacity)
     });
     for(int v : visits)
       ASSERT_EQ(v, 1);
+    // unsorted: the same sets
+    tree.for_each_neighborhood(typename K::FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
+      ++visits[i];
+      std::vector<std::size_t> sorted = near, expected;
+      std::sort(sorted.begin(), sorted.end());
+      tree.vertices_near_point(pts[i], typename K::FT(r), std::back_inserter(expected));
+      ASSERT_EQ(sorted, expected) << "point " << i << " radius " << r << ", in the tree's order";
+    }, ST::Neighborhood_order::TREE);
+    for(int v : visits)
+      ASSERT_EQ(v, 2);
   }
 }
 
@@ -753,6 +763,16 @@ void check_segment_join(const std::vector<Xyz>& xyz, std::size_t capacity, ST::S
     });
     for(int v : visits)
       ASSERT_EQ(v, 1);
+    // unsorted: the same sets
+    tree.for_each_segment_neighborhood(segments, typename K::FT(r), [&](std::size_t s, const std::vector<std::size_t>& near) {
+      ++visits[s];
+      std::vector<std::size_t> sorted = near, expected;
+      std::sort(sorted.begin(), sorted.end());
+      tree.vertices_near_segment(pts[segments[s][0]], pts[segments[s][1]], typename K::FT(r), std::back_inserter(expected));
+      ASSERT_EQ(sorted, expected) << "segment " << s << " radius " << r << ", in the tree's order";
+    }, ST::Neighborhood_order::TREE);
+    for(int v : visits)
+      ASSERT_EQ(v, 2);
   }
 }
 

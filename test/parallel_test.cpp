@@ -944,6 +944,18 @@ TEST(ParallelOctree, ConcurrentSearchesGiveTheSequentialAnswers)
   tree.for_each_segment_neighborhood(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
     expected_segments[s] = near;
   });
+  std::vector<std::vector<std::size_t>> expected_in_tree_order(soup.points.size());
+  tree.for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) { expected_in_tree_order[k] = near; },
+                             ST::Neighborhood_order::TREE);
+  std::vector<std::vector<std::size_t>> expected_segments_in_tree_order(segments.size());
+  tree.for_each_segment_neighborhood(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
+    expected_segments_in_tree_order[s] = near;
+  }, ST::Neighborhood_order::TREE);
+  for(std::size_t k = 0; k < expected.size(); ++k) {
+    std::vector<std::size_t> sorted = expected_in_tree_order[k];
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(sorted, expected[k]) << k;
+  }
   for_each_thread_count([&](int) {
     std::vector<std::vector<std::size_t>> found(soup.points.size());
     std::vector<std::atomic<int>> calls(soup.points.size());
@@ -958,6 +970,17 @@ TEST(ParallelOctree, ConcurrentSearchesGiveTheSequentialAnswers)
       found_segments[s] = near;
     });
     EXPECT_EQ(found_segments, expected_segments);
+    // unsorted: the order of the sequential search in the tree's order, on any number of threads
+    std::vector<std::vector<std::size_t>> found_in_tree_order(soup.points.size());
+    tree.for_each_neighborhood_concurrently<Parallel>(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
+      found_in_tree_order[k] = near;
+    }, ST::Neighborhood_order::TREE);
+    EXPECT_EQ(found_in_tree_order, expected_in_tree_order);
+    std::vector<std::vector<std::size_t>> segments_in_tree_order(segments.size());
+    tree.for_each_segment_neighborhood_concurrently<Parallel>(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
+      segments_in_tree_order[s] = near;
+    }, ST::Neighborhood_order::TREE);
+    EXPECT_EQ(segments_in_tree_order, expected_segments_in_tree_order);
   });
 }
 

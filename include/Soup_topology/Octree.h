@@ -49,6 +49,19 @@ enum class Segment_query_strategy
 };
 
 /// \ingroup PkgSoupTopologyOctree
+/// The order of the indices that the joins of `Octree` (`for_each_neighborhood()`,
+/// `for_each_segment_neighborhood()` and their concurrent versions) hand to their callback.
+enum class Neighborhood_order
+{
+  /// in increasing order (the default)
+  INCREASING,
+  /// in an order fixed by the tree, the same on any number of threads, but not sorted: for a
+  /// caller whose use of a neighbourhood does not depend on its order (a minimum, a count), which
+  /// then does not pay for the sort
+  TREE
+};
+
+/// \ingroup PkgSoupTopologyOctree
 /// \brief a Morton-addressed octree over the points of a random-access range, answering the two
 /// proximity questions of snapping (vertex near vertex, vertex near segment) exactly.
 ///
@@ -269,10 +282,12 @@ public:
   /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
   /// \param radius the largest distance between neighbors
   /// \param callback called once per point
+  /// \param order `Neighborhood_order::TREE` hands `near` over unsorted
   template <typename Callback>
-  void for_each_neighborhood(const FT& radius, Callback callback) const
+  void for_each_neighborhood(const FT& radius, Callback callback,
+                             Neighborhood_order order = Neighborhood_order::INCREASING) const
   {
-    for_each_neighborhood<CGAL::Sequential_tag>(radius, callback);
+    for_each_neighborhood<CGAL::Sequential_tag>(radius, callback, order);
   }
 
   /// the same; with `CGAL::Parallel_tag` (and coordinates stored as `double`) the neighborhoods
@@ -283,8 +298,10 @@ public:
   /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
   /// \param radius the largest distance between neighbors
   /// \param callback called once per point
+  /// \param order `Neighborhood_order::TREE` hands `near` over unsorted
   template <typename ConcurrencyTag, typename Callback>
-  void for_each_neighborhood(const FT& radius, Callback callback) const
+  void for_each_neighborhood(const FT& radius, Callback callback,
+                             Neighborhood_order order = Neighborhood_order::INCREASING) const
   {
     check_radius(radius);
     if(empty())
@@ -321,7 +338,7 @@ public:
                                  out.near.insert(out.near.end(), near.begin(), near.end());
                                  out.end.push_back(out.near.size());
                                  out.point.push_back(k);
-                               });
+                               }, order);
         });
         for(std::size_t g = 0; g < last - first; ++g)
         {
@@ -341,7 +358,7 @@ public:
     traverse([](const Frame&, double&) { return true; }, [&](const Frame&, const Node& nd) {
       leaf_neighborhoods(nd, r2, scratch, [&](std::uint32_t k, const std::vector<std::size_t>& near) {
         callback(std::size_t(ids_[k]), near);
-      });
+      }, order);
     });
   }
 
@@ -396,9 +413,11 @@ public:
   /// \param segments the segments, by the indices of their ends
   /// \param radius the largest distance from a segment
   /// \param callback called once per segment
+  /// \param order `Neighborhood_order::TREE` hands `near` over unsorted
   /// \throw Invalid_input if an end is not a point of the tree, or as the other queries
   template <typename SegmentRange, typename Callback>
-  void for_each_segment_neighborhood(const SegmentRange& segments, const FT& radius, Callback callback) const
+  void for_each_segment_neighborhood(const SegmentRange& segments, const FT& radius, Callback callback,
+                                     Neighborhood_order order = Neighborhood_order::INCREASING) const
   {
     check_radius(radius);
     const Segments_by_first_end by_first = segments_by_first_end(segments);
@@ -406,7 +425,7 @@ public:
       return;
     Segment_scratch scratch;
     traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      segments_of_leaf(f, nd, by_first, radius, scratch, callback);
+      segments_of_leaf(f, nd, by_first, radius, scratch, callback, order);
     });
   }
 
@@ -421,8 +440,10 @@ public:
   /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
   /// \param radius the largest distance between neighbors
   /// \param callback called once per point
+  /// \param order `Neighborhood_order::TREE` hands `near` over unsorted
   template <typename ConcurrencyTag, typename Callback>
-  void for_each_neighborhood_concurrently(const FT& radius, Callback callback) const
+  void for_each_neighborhood_concurrently(const FT& radius, Callback callback,
+                                          Neighborhood_order order = Neighborhood_order::INCREASING) const
   {
     if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
     {
@@ -437,11 +458,11 @@ public:
           leaf_neighborhoods(nodes_[groups.leaves[l].second], r2, scratch,
                              [&](std::uint32_t k, const std::vector<std::size_t>& near) {
                                callback(std::size_t(ids_[k]), near);
-                             });
+                             }, order);
       });
     }
     else
-      for_each_neighborhood<CGAL::Sequential_tag>(radius, callback);
+      for_each_neighborhood<CGAL::Sequential_tag>(radius, callback, order);
   }
 
   /// calls `callback(s, near)` for every segment `s` of `segments` with the arguments of
@@ -456,9 +477,11 @@ public:
   /// \param segments the segments, by the indices of their ends
   /// \param radius the largest distance from a segment
   /// \param callback called once per segment
+  /// \param order `Neighborhood_order::TREE` hands `near` over unsorted
   template <typename ConcurrencyTag, typename SegmentRange, typename Callback>
   void for_each_segment_neighborhood_concurrently(const SegmentRange& segments, const FT& radius,
-                                                  Callback callback) const
+                                                  Callback callback,
+                                                  Neighborhood_order order = Neighborhood_order::INCREASING) const
   {
     if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && double_coordinates)
     {
@@ -472,11 +495,12 @@ public:
       internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
         Segment_scratch scratch;
         for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
-          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, scratch, callback);
+          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, scratch, callback,
+                           order);
       });
     }
     else
-      for_each_segment_neighborhood(segments, radius, callback);
+      for_each_segment_neighborhood(segments, radius, callback, order);
   }
 
   /// @}
@@ -901,7 +925,7 @@ private:
   // the same either way.
   template <typename Callback>
   void segments_of_leaf(const Frame& f, const Node& nd, const Segments_by_first_end& by_first, const FT& radius,
-                        Segment_scratch& scratch, Callback& callback) const
+                        Segment_scratch& scratch, Callback& callback, Neighborhood_order order) const
   {
     if(by_first.bucket[nd.begin] == by_first.bucket[nd.end])
       return;
@@ -965,7 +989,8 @@ private:
           else
             scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
           ++query;
-          std::sort(near.begin(), near.end());
+          if(order == Neighborhood_order::INCREASING)
+            std::sort(near.begin(), near.end());
         }
         callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
       }
@@ -1036,12 +1061,13 @@ private:
 
   // The neighborhoods of the points of leaf `nd`: `emit(k, near)` for every position `k` of the
   // leaf in increasing order, `near` the indices of the points within sqrt(r2) of point `k`, in
-  // increasing order. The candidates are the points whose approximate coordinates lie in the box
+  // increasing order (with `Neighborhood_order::TREE`, in the order of their positions). The candidates are the points whose approximate coordinates lie in the box
   // of the leaf's points grown by the largest of their bounds (every neighbor of a point of the
   // leaf does, as for the pruning of `vertices_near_point()`), gathered once from the deepest
   // node holding that box; each point keeps the candidates that `scan_leaf()` would keep for it.
   template <typename Emit>
-  void leaf_neighborhoods(const Node& nd, const FT& r2, Join_scratch& scratch, Emit emit) const
+  void leaf_neighborhoods(const Node& nd, const FT& r2, Join_scratch& scratch, Emit emit,
+                          Neighborhood_order order) const
   {
     std::array<double, 3> lo{}, hi{};
     double err = 0;
@@ -1084,7 +1110,8 @@ private:
       for(const std::uint32_t j : scratch.candidates)
         if(is_near(j, points_[k], qa.c, r2, bound * bound, compare_sq))
           scratch.near.push_back(ids_[j]);
-      std::sort(scratch.near.begin(), scratch.near.end());
+      if(order == Neighborhood_order::INCREASING)
+        std::sort(scratch.near.begin(), scratch.near.end());
       emit(k, static_cast<const std::vector<std::size_t>&>(scratch.near));
     }
   }

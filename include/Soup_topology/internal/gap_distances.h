@@ -124,7 +124,8 @@ public:
   /// vertices, then the segment queries of all the border edges at once (their ends are
   /// border vertices, points of the tree: each query starts next to its edge). With
   /// `Candidates::COUNT_FIRST` the candidates are counted (and the budget checked) before any is
-  /// listed in order or examined.
+  /// listed or examined. The neighbourhoods come unsorted (`Neighborhood_order::TREE`): the
+  /// answer is the least candidate in an order of its own, whatever the order of the offers.
   ///
   /// With `CGAL::Parallel_tag` both searches run on TBB's threads and the candidates are offered
   /// as they are found, in no particular order. The answer does not depend on that order: it is
@@ -165,7 +166,7 @@ public:
         r, [&](std::size_t k, const std::vector<std::size_t>& near) {
           count(near.size());
           for(std::size_t j : near) offer_vertex(k, j);
-        });
+        }, Neighborhood_order::TREE);
       std::vector<double> vertex_distance(nearest_.size());
       for(std::size_t k = 0; k < nearest_.size(); ++k) vertex_distance[k] = nearest_[k].distance;
       std::array<std::mutex, 256> locks;
@@ -178,17 +179,17 @@ public:
                                    const std::lock_guard<std::mutex> hold(locks[k % locks.size()]);
                                    offer_edge_at(k, d, border_edges_[e]);
                                  });
-        });
+        }, Neighborhood_order::TREE);
       examined_ = examined.load();
     } else {
       tree_->for_each_neighborhood(r, [&](std::size_t k, const std::vector<std::size_t>& near) {
         if(count_while_searching) count_examined(near.size());
         for(std::size_t j : near) offer_vertex(k, j);
-      });
+      }, Neighborhood_order::TREE);
       tree_->for_each_segment_neighborhood(border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
         if(count_while_searching) count_examined(near.size());
         offer_edge(border_edges_[e], near, [](std::size_t m) { return m; });
-      });
+      }, Neighborhood_order::TREE);
     }
   }
 
