@@ -374,7 +374,7 @@ private:
   {
     const std::size_t n = candidates_.size();
     row_start_.resize(n);
-    row_end_.resize(n);
+    row_size_.resize(n);
     rows_.assign(1, {});
     row_buffer_.clear();
     if constexpr(std::is_same<FT, double>::value) {
@@ -399,7 +399,7 @@ private:
         components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
         if(collapse_ || !mate[candidates_[d]]) row.push_back(static_cast<std::uint32_t>(d));
       }
-      row_end_[c] = row.size();
+      row_size_[c] = static_cast<std::uint32_t>(row.size() - row_start_[c]);
       if(!collapse_) mark_mates(c, 0);
     });
   }
@@ -447,7 +447,7 @@ private:
           if(collapse_ || !std::binary_search(mine.mates.begin(), mine.mates.end(), candidates_[d]))
             row->push_back(static_cast<std::uint32_t>(d));
         }
-        row_end_[c] = row->size();
+        row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
       });
     components.into(components_);
   }
@@ -551,6 +551,8 @@ private:
     std::vector<Point>().swap(candidate_points_);
     std::deque<std::vector<std::uint32_t>>().swap(rows_);
     std::vector<std::uint32_t>().swap(row_buffer_);
+    std::vector<std::size_t>().swap(row_start_);
+    std::vector<std::uint32_t>().swap(row_size_);
   }
 
   // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
@@ -617,7 +619,7 @@ private:
           members.push_back(static_cast<std::uint32_t>(d));
     } else {
       const std::vector<std::uint32_t>& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]];
-      for(std::size_t k = row_start_[rep]; k < row_end_[rep]; ++k)
+      for(std::size_t k = row_start_[rep], end = k + row_size_[rep]; k < end; ++k)
         if(!assigned_[row[k]]) members.push_back(row[k]);
     }
     const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
@@ -1032,7 +1034,8 @@ private:
   bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
   std::deque<std::vector<std::uint32_t>> rows_;         // the rows of neighbours, in one buffer per thread
   std::vector<std::uint32_t> row_buffer_;               // by candidate: the buffer of its row (empty: the first)
-  std::vector<std::size_t> row_start_, row_end_;
+  std::vector<std::size_t> row_start_;                  // by candidate: where its row begins in its buffer
+  std::vector<std::uint32_t> row_size_;                 // by candidate: the length of its row (fewer than the candidates)
   // Clusters.
   std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order
   std::vector<size_type> target_;                       // representative of a merged vertex, or none
