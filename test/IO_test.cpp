@@ -1137,6 +1137,72 @@ TEST(ReadTriangleSoup, Issue13BinarySTLWeldedWhileReadEqualsIndexTriangles)
   }
 }
 
+// Issue 13: the command-line tool holds 4-byte triangles. Faces of a narrow index type are
+// filled with checked indices: a soup with more points than the type counts is refused with a
+// message, never truncated; one that fits reads the same as into `std::size_t`.
+TEST(ReadTriangleSoup, Issue13NarrowIndexTypesRefuseWhatTheyCannotHold)
+{
+  // An exploded grid: 22,000 triangles with distinct corners, 66,000 points after the weld.
+  std::vector<std::array<Point, 3>> exploded;
+  for(int i = 0; i < 22000; ++i) {
+    const double x = i % 200, y = i / 200;
+    exploded.push_back({Point(x, y, 0), Point(x + 0.5, y, 0), Point(x, y + 0.5, 0)});
+  }
+  std::string stl(80, ' ');
+  const std::uint32_t n = static_cast<std::uint32_t>(exploded.size());
+  stl.append(reinterpret_cast<const char*>(&n), 4);
+  std::ostringstream off;
+  off << "OFF\n" << 3 * exploded.size() << ' ' << exploded.size() << " 0\n";
+  for(const auto& t : exploded) {
+    float c[12] = {0, 0, 0};
+    for(std::size_t k = 0; k < 3; ++k) {
+      for(std::size_t d = 0; d < 3; ++d) c[3 + 3 * k + d] = static_cast<float>(t[k][static_cast<int>(d)]);
+      off << t[k].x() << ' ' << t[k].y() << " 0\n";
+    }
+    stl.append(reinterpret_cast<const char*>(c), sizeof c);
+    stl.append(2, '\0');
+  }
+  for(std::size_t f = 0; f < exploded.size(); ++f) off << "3 " << 3 * f << ' ' << 3 * f + 1 << ' ' << 3 * f + 2 << '\n';
+  const std::string off_text = off.str();
+
+  const auto refuses = [](const auto& read) {
+    try {
+      read();
+    } catch(const std::exception& e) {
+      return std::string(e.what()).find("does not fit in the index type of the triangles (at most 65535)") !=
+             std::string::npos;
+    }
+    return false;
+  };
+  std::vector<Point> points;
+  std::vector<std::array<std::uint16_t, 3>> faces16;
+  EXPECT_TRUE(refuses([&] { ST::IO::read_triangle_soup(stl.data(), stl.size(), "stl", points, faces16); }));
+  EXPECT_TRUE(refuses([&] { ST::IO::read_triangle_soup(off_text.data(), off_text.size(), "off", points, faces16); }));
+  EXPECT_TRUE(refuses([&] { ST::index_triangles(exploded, points, faces16); }));
+  // 21,845 triangles hold 65,535 points: they fit.
+  const std::vector<std::array<Point, 3>> fitting(exploded.begin(), exploded.begin() + 21845);
+  faces16.clear();
+  points.clear();
+  ST::index_triangles(fitting, points, faces16);
+  EXPECT_EQ(points.size(), 65535u);
+  EXPECT_EQ(faces16.back()[2], 65534u);
+
+  for(const char* format : {"stl", "off"}) {
+    SCOPED_TRACE(format);
+    const std::string& bytes = std::string(format) == "stl" ? stl : off_text;
+    std::vector<Point> p64, p32;
+    std::vector<Triangle> t64;
+    std::vector<std::array<std::uint32_t, 3>> t32;
+    ST::IO::read_triangle_soup(bytes.data(), bytes.size(), format, p64, t64);
+    ST::IO::read_triangle_soup(bytes.data(), bytes.size(), format, p32, t32);
+    EXPECT_EQ(p32, p64);
+    ASSERT_EQ(t32.size(), t64.size());
+    ASSERT_EQ(t64.size(), exploded.size());
+    for(std::size_t f = 0; f < t64.size(); ++f)
+      for(std::size_t k = 0; k < 3; ++k) ASSERT_EQ(std::size_t(t32[f][k]), t64[f][k]);
+  }
+}
+
 // Issue 13: the text readers parse numbers with std::from_chars; the accepted texts and their
 // values are those of strtod / strtof.
 TEST(ReadTriangleSoup, Issue13NumbersParseAsTheCLibraryParsesThem)

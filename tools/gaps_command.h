@@ -17,6 +17,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <array>
+#include <cstdint>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -169,7 +170,7 @@ int run_gaps(const std::vector<std::string>& args)
   }
   if(file.empty()) throw Gaps_usage_error("gaps: no input file");
   std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
   Soup_topology::IO::read_triangle_soup(file, points, triangles);
   // The soup as read is exactly welded already: the analysis does not weld a copy of it.
   const Soup_topology::Gap_analysis a =

@@ -20,6 +20,7 @@
 #include "output_files.h"
 
 #include <array>
+#include <cstdint>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -33,7 +34,7 @@ template <class Point>
 struct Html_input_soup
 {
   std::vector<Point> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
   Soup_topology::IO::Html_report_site_recorder sites;
 };
 
@@ -50,7 +51,7 @@ inline void check_html_path(const std::string& html, const std::vector<std::stri
 /// the one `read_triangle_soup` gave, exactly welded already: the analysis does not weld a copy.
 template <class Point>
 void add_input_gaps(Soup_topology::IO::Html_report_content& content, const std::vector<Point>& points,
-                    const std::vector<std::array<std::size_t, 3>>& triangles)
+                    const std::vector<std::array<std::uint32_t, 3>>& triangles)
 {
   try {
     using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
@@ -68,7 +69,7 @@ void add_input_gaps(Soup_topology::IO::Html_report_content& content, const std::
 /// writes `content` and the soup to `file` through a temporary file.
 template <class Point>
 void write_html_page(const std::string& file, const std::vector<Point>& points,
-                     const std::vector<std::array<std::size_t, 3>>& triangles,
+                     const std::vector<std::array<std::uint32_t, 3>>& triangles,
                      const Soup_topology::IO::Html_report_content& content)
 {
   Temporary_output page(file);
@@ -80,7 +81,7 @@ void write_html_page(const std::string& file, const std::vector<Point>& points,
 /// the page of `soup_topology stats`: the soup as read (exactly welded).
 template <class Point>
 void write_stats_html(const std::string& file, const std::string& input, const std::vector<Point>& points,
-                      const std::vector<std::array<std::size_t, 3>>& triangles,
+                      const std::vector<std::array<std::uint32_t, 3>>& triangles,
                       const Soup_topology::Soup_statistics& s, const std::string& report_json)
 {
   Soup_topology::IO::Html_report_content c;
@@ -102,7 +103,7 @@ void write_stats_html(const std::string& file, const std::string& input, const s
 /// and the sites recorded in `input.sites`, at the points of `input`.
 template <class Point>
 void write_repair_html(const std::string& file, const std::string& input_name, const Html_input_soup<Point>& input,
-                       const std::vector<Point>& points, const std::vector<std::array<std::size_t, 3>>& triangles,
+                       const std::vector<Point>& points, const std::vector<std::array<std::uint32_t, 3>>& triangles,
                        const Soup_topology::Reconstruction_report& r, const std::string& report_json)
 {
   Soup_topology::IO::Html_report_content c = Soup_topology::IO::html_report_content(r);

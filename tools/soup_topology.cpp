@@ -51,6 +51,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
@@ -65,7 +66,7 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
-using Triangle = std::array<std::size_t, 3>;
+using Triangle = std::array<std::uint32_t, 3>; // 4-byte indices: the readers refuse a soup of more points
 namespace ST = Soup_topology;
 namespace tool = soup_topology_tool;
 // The steps run on TBB's threads when the tool is built with TBB; the output is the same.

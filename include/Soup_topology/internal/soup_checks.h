@@ -54,15 +54,32 @@ std::array<std::size_t, 3> triangle_indices(const Face& f)
   return {a, b, static_cast<std::size_t>(*it)};
 }
 
-/// writes the three indices of a triangle into a face of any `FaceRange` type.
+/// `v` as the index type `Index` of a face; throws `Invalid_input` if an integer `Index` cannot
+/// hold it (a soup read into 4-byte or 2-byte indices with more points than they count).
+template <class Index>
+Index narrow_vertex_index(std::size_t v)
+{
+  if constexpr(std::is_integral<Index>::value) {
+    constexpr auto largest = static_cast<std::make_unsigned_t<Index>>(std::numeric_limits<Index>::max());
+    if constexpr(largest < std::numeric_limits<std::size_t>::max()) {
+      if(v > largest)
+        throw Invalid_input("vertex index " + std::to_string(v) + " does not fit in the index type of the triangles (at most " +
+                            std::to_string(largest) + ")");
+    }
+  }
+  return static_cast<Index>(v);
+}
+
+/// writes the three indices of a triangle into a face of any `FaceRange` type (checked: see
+/// `narrow_vertex_index()`).
 template <class Face>
 void assign_triangle(Face& f, std::size_t a, std::size_t b, std::size_t c)
 {
   using Index = std::decay_t<decltype(*std::begin(f))>;
   auto it = std::begin(f);
-  *it++ = static_cast<Index>(a);
-  *it++ = static_cast<Index>(b);
-  *it = static_cast<Index>(c);
+  *it++ = narrow_vertex_index<Index>(a);
+  *it++ = narrow_vertex_index<Index>(b);
+  *it = narrow_vertex_index<Index>(c);
 }
 template <class Face, class = void>
 struct has_resize : std::false_type {};
