@@ -17,6 +17,7 @@
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/snap_vertices_worker.h>
 #include <Soup_topology/internal/tolerance_graph.h>
 
 #include "soup_generators.h"
@@ -527,6 +528,40 @@ TEST(ParallelRobustnessSoup, ClustersWithRefusalsAndCollapsesOverManyBlocks)
       EXPECT_EQ(t, et);
       EXPECT_EQ(calls.calls, expected_calls.calls);
     });
+  }
+}
+
+TEST(ParallelRobustnessSoup, RowsSpreadOverManyBuffersGiveTheSameWeld)
+{
+  // The rows of the tolerance graph start at 4-byte offsets: a buffer of rows holds at most
+  // `row_buffer_limit` entries and the rows go on in a new one. With a limit of 40 entries the
+  // rows of this soup (sequential and on each thread) spread over thousands of buffers; the weld
+  // is the one of a single buffer.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  const double eps = 1e-4 * diagonal(m.points);
+  const auto soup = soup_test::small_feature_soup(m.points, m.triangles, 200, 0.05 * eps, 0.5, eps, 43);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    SCOPED_TRACE(policy == ST::Small_features::REFUSE ? "refuse" : "collapse");
+    auto expected_triangles = soup.triangles;
+    Recording_visitor expected_calls;
+    const ST::Snap_report expected = ST::snap_vertices(
+      soup.points, expected_triangles,
+      ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(expected_calls))));
+    ASSERT_GT(expected.merged_vertices, 1000u);
+    const std::size_t limit = ST::internal::row_buffer_limit;
+    ST::internal::row_buffer_limit = 40;
+    for(const bool parallel : {false, true}) {
+      SCOPED_TRACE(parallel ? "parallel" : "sequential");
+      auto t = soup.triangles;
+      Recording_visitor calls;
+      const auto np = ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(eps).visitor(std::ref(calls)));
+      const ST::Snap_report r = parallel ? ST::snap_vertices<Parallel>(soup.points, t, np) : ST::snap_vertices(soup.points, t, np);
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(t, expected_triangles);
+      EXPECT_EQ(calls.calls, expected_calls.calls);
+    }
+    ST::internal::row_buffer_limit = limit;
   }
 }
 

@@ -29,6 +29,7 @@
 #include <deque>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <numeric>
@@ -145,6 +146,11 @@ private:
 /// radius within which the octree lists the candidates before the pair rule filters them. Without
 /// a map `tolerances_` is null and each of these places takes the one-tolerance branch it took
 /// before (one pointer test per pair, outside the predicates).
+/// the most entries of one buffer of the rows of the weld's tolerance graph, so that a row's
+/// start fits in 4 bytes (rows go on in a new buffer beyond it). A variable only so that a test
+/// can make it small and check that rows spread over many buffers give the same weld.
+inline std::size_t row_buffer_limit = std::numeric_limits<std::uint32_t>::max();
+
 template <class Kernel, class Visitor>
 class Snap_vertices_worker
 {
@@ -383,7 +389,7 @@ private:
         return;
       }
     }
-    std::vector<std::uint32_t>& row = rows_[0];
+    std::vector<std::uint32_t>* row = &rows_[0];
     std::vector<char> mate(points_.size(), 0);
     auto mark_mates = [&](std::size_t c, char value) {
       for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
@@ -391,17 +397,30 @@ private:
     };
     tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
       if(!collapse_) mark_mates(c, 1);
-      row_start_[c] = row.size();
+      if(!row_fits(*row, found.size())) {
+        // The first full buffer: the rows so far are in buffer 0, and each row says where it is.
+        if(row_buffer_.empty()) row_buffer_.assign(n, 0);
+        row = &rows_.emplace_back();
+      }
+      if(!row_buffer_.empty()) row_buffer_[c] = static_cast<std::uint32_t>(rows_.size() - 1);
+      row_start_[c] = static_cast<std::uint32_t>(row->size());
       for(std::size_t d : found) {
         if(d == c) continue;
         // The octree lists the candidates within the largest tolerance; the pair rule decides.
         if(tolerances_ != nullptr && !within_pair_tolerance(candidates_[c], candidates_[d])) continue;
         components_.unite(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(d));
-        if(collapse_ || !mate[candidates_[d]]) row.push_back(static_cast<std::uint32_t>(d));
+        if(collapse_ || !mate[candidates_[d]]) row->push_back(static_cast<std::uint32_t>(d));
       }
-      row_size_[c] = static_cast<std::uint32_t>(row.size() - row_start_[c]);
+      row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
       if(!collapse_) mark_mates(c, 0);
     });
+  }
+
+  // `true` if a row of up to `length` neighbours can start in `row`: its start and its end stay
+  // within `row_buffer_limit`, so that both fit in 4 bytes (a new buffer is started otherwise).
+  static bool row_fits(const std::vector<std::uint32_t>& row, std::size_t length)
+  {
+    return row.size() + length <= row_buffer_limit;
   }
 
   // `join_neighborhoods()` on TBB's threads. The vertices that share a triangle with a candidate
@@ -425,7 +444,7 @@ private:
     tree_->template for_each_neighborhood_concurrently<CGAL::Parallel_if_available_tag>(
       eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
         static thread_local Thread_rows mine;
-        if(mine.call != call) {
+        if(mine.call != call || !row_fits(*mine.row, found.size())) {
           const std::lock_guard<std::mutex> hold(buffers_mutex);
           mine.call = call;
           mine.buffer = static_cast<std::uint32_t>(rows_.size());
@@ -439,7 +458,7 @@ private:
           std::sort(mine.mates.begin(), mine.mates.end());
         }
         row_buffer_[c] = mine.buffer;
-        row_start_[c] = row->size();
+        row_start_[c] = static_cast<std::uint32_t>(row->size());
         for(std::size_t d : found) {
           if(d == c) continue;
           if(tolerances_ != nullptr && !within_pair_tolerance(candidates_[c], candidates_[d])) continue;
@@ -484,8 +503,9 @@ private:
     assigned_.assign(n, 0);
     component_size_.assign(n, 0);
     largest_cluster_.assign(n, 0);
-    root_.resize(n);
-    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c] = components_.find(c)];
+    // The components are read as roots from here on: their storage becomes `root_`.
+    root_ = components_.take_roots();
+    for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c]];
     std::vector<std::uint32_t> visits(n), next_visit(n);
     rank_.resize(n);
     std::uint32_t number_of_visits = 0;
@@ -551,7 +571,7 @@ private:
     std::vector<Point>().swap(candidate_points_);
     std::deque<std::vector<std::uint32_t>>().swap(rows_);
     std::vector<std::uint32_t>().swap(row_buffer_);
-    std::vector<std::size_t>().swap(row_start_);
+    std::vector<std::uint32_t>().swap(row_start_);
     std::vector<std::uint32_t>().swap(row_size_);
   }
 
@@ -723,12 +743,12 @@ private:
     const std::size_t n = candidates_.size();
     std::vector<char> ambiguous(n, 0);
     if(!collapse_)
-      for(const Pair& pr : same_triangle_pairs_) ambiguous[components_.find(pr.first)] = 1;
+      for(const Pair& pr : same_triangle_pairs_) ambiguous[root_[pr.first]] = 1;
     for(std::uint32_t c = 0; c < n; ++c)
-      if(components_.find(c) == c && component_size_[c] >= 2 && largest_cluster_[c] != component_size_[c])
+      if(root_[c] == c && component_size_[c] >= 2 && largest_cluster_[c] != component_size_[c])
         ambiguous[c] = 1;
     for(const std::uint32_t c : lex_order_) {
-      const std::uint32_t root = components_.find(c);
+      const std::uint32_t root = root_[c];
       if(ambiguous[root]) {
         report_.ambiguous_sites.push_back(candidates_[c]);
         ambiguous[root] = 0;
@@ -1029,12 +1049,13 @@ private:
   std::vector<Point> candidate_points_;
   std::unique_ptr<Octree<Kernel>> tree_;
   std::vector<Pair> same_triangle_pairs_;
-  Union_find components_;
+  Union_find components_;                               // of the tolerance graph, until they become `root_`
   bool dense_ = false;
   bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
   std::deque<std::vector<std::uint32_t>> rows_;         // the rows of neighbours, in one buffer per thread
   std::vector<std::uint32_t> row_buffer_;               // by candidate: the buffer of its row (empty: the first)
-  std::vector<std::size_t> row_start_;                  // by candidate: where its row begins in its buffer
+  std::vector<std::uint32_t> row_start_;                // by candidate: where its row begins in its buffer (4 bytes:
+                                                        // a buffer holds at most `row_buffer_limit` entries)
   std::vector<std::uint32_t> row_size_;                 // by candidate: the length of its row (fewer than the candidates)
   // Clusters.
   std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order

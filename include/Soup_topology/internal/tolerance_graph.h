@@ -60,6 +60,13 @@ public:
   /// takes the sets of `parents`, a forest whose every parent is at most its child (so that the
   /// root of a set is its smallest element, as `unite()` leaves it).
   void assign(std::vector<std::uint32_t>&& parents) { parent_ = std::move(parents); }
+  /// the root of every element, `roots[x] == find(x)`, in the storage of the sets (left empty).
+  /// One pass in increasing order: a parent is smaller than its child, so it holds its root already.
+  std::vector<std::uint32_t> take_roots()
+  {
+    for(std::size_t x = 0; x < parent_.size(); ++x) parent_[x] = parent_[parent_[x]];
+    return std::move(parent_);
+  }
 
 private:
   std::vector<std::uint32_t> parent_;
