@@ -11,6 +11,7 @@
 #include <Soup_topology/Octree.h>
 #include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/IO/STL.h>
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/loop_subdivision.h>
 #include <Soup_topology/orient_triangle_soup.h>
@@ -724,6 +725,75 @@ TEST(ParallelSTL, BinaryDecode)
       EXPECT_EQ(bits(a), bits(b));
     });
   }
+}
+
+TEST(ParallelSTL, ReadTriangleSoupOfEveryFormat)
+{
+  // The reader's checks and exact weld on TBB's threads: the points, the triangles and the report
+  // of the sequential reader, for a binary STL of many blocks (the subdivided elephant, exploded
+  // into facets, with a few repeated facets) and a file of every format.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  std::string stl(80, '\0');
+  const std::uint32_t n = static_cast<std::uint32_t>(m.triangles.size() + m.triangles.size() / 100);
+  stl.append(reinterpret_cast<const char*>(&n), 4);
+  for(std::size_t i = 0; i < n; ++i) {
+    const Triangle& t = m.triangles[i < m.triangles.size() ? i : 100 * (i - m.triangles.size())];
+    float f[12] = {};
+    for(std::size_t k = 0; k < 3; ++k)
+      for(int c = 0; c < 3; ++c) f[3 + 3 * k + std::size_t(c)] = static_cast<float>(m.points[t[k]][c]);
+    stl.append(reinterpret_cast<const char*>(f), sizeof f);
+    stl.append(2, '\0');
+  }
+  std::vector<std::pair<std::string, std::string>> files{{"stl", stl}};
+  for(const char* file : {"cgal_repair/pig.stl.xz", "real_defects/openscad/bad-stl-tardis.stl", "clean/elephant.off",
+                          "cgal_repair/quads_to_stitch.off", "cad/kicad/SOT-23.wrl", "cad/kicad/TO-220-3_Vertical.wrl"})
+  {
+    const std::string path = soup_test::data_file(file);
+    files.emplace_back(ST::IO::file_extension(path), ST::IO::read_file_contents(path));
+  }
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 4 5 3\n";
+  files.emplace_back("obj", obj);
+  files.emplace_back("ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n1 0 0\n3 0 1 2\n3 3 2 0\n");
+  const auto fields = [](const ST::IO::Soup_read_report& r) {
+    return std::make_tuple(r.format, r.input_polygons, r.input_vertices, r.input_triangles, r.skipped_polygons,
+                           r.non_convex_polygons, r.exact_duplicates, r.collapsed_triangles);
+  };
+  for(const auto& [format, bytes] : files) {
+    SCOPED_TRACE(format + ", " + std::to_string(bytes.size()) + " bytes");
+    std::vector<Point> expected_points;
+    std::vector<Triangle> expected_triangles;
+    const ST::IO::Soup_read_report expected =
+      ST::IO::read_triangle_soup(bytes.data(), bytes.size(), format, expected_points, expected_triangles);
+    ASSERT_FALSE(expected_triangles.empty());
+    for_each_thread_count([&](int) {
+      std::vector<Point> points;
+      std::vector<Triangle> triangles;
+      const ST::IO::Soup_read_report r =
+        ST::IO::read_triangle_soup<Parallel>(bytes.data(), bytes.size(), format, points, triangles);
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(bits(points), bits(expected_points));
+      EXPECT_EQ(triangles, expected_triangles);
+    });
+  }
+  // A non-finite corner: the first one is named, whatever the threads.
+  std::string bad = stl;
+  const float nan = std::nanf("");
+  const std::size_t first_bad = n / 2 + 7;
+  for(const std::size_t facet : {first_bad, std::size_t(n) - 5})
+    std::memcpy(&bad[84 + 50 * facet + 12 + 4 * 4], &nan, 4);
+  for_each_thread_count([&](int) {
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    try {
+      ST::IO::read_triangle_soup<Parallel>(bad.data(), bad.size(), "stl", points, triangles, "bad.stl");
+      ADD_FAILURE() << "no exception";
+    } catch(const ST::Invalid_input& e) {
+      EXPECT_EQ(std::string(e.what()), "bad.stl: facet " + std::to_string(first_bad) + " has a non-finite coordinate");
+    }
+  });
 }
 
 TEST(ParallelIndexTriangles, EmptyAndTinySoups)

@@ -171,7 +171,7 @@ int run_gaps(const std::vector<std::string>& args)
   if(file.empty()) throw Gaps_usage_error("gaps: no input file");
   std::vector<CGAL::Exact_predicates_inexact_constructions_kernel::Point_3> points;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  Soup_topology::IO::read_triangle_soup(file, points, triangles);
+  Soup_topology::IO::read_triangle_soup<ConcurrencyTag>(file, points, triangles);
   // The soup as read is exactly welded already: the analysis does not weld a copy of it.
   const Soup_topology::Gap_analysis a =
     Soup_topology::internal::analyze_exactly_welded_gaps<ConcurrencyTag>(points, triangles,

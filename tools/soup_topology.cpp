@@ -282,7 +282,7 @@ int run_stats(const std::vector<std::string>& args)
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
-  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(file, points, triangles);
+  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup<Concurrency>(file, points, triangles);
   const ST::Adjacency_tables tables(triangles, points.size(), Concurrency());
   const ST::Soup_statistics s = ST::compute_statistics(points, tables);
 
@@ -598,7 +598,7 @@ int run_repair(const std::vector<std::string>& args)
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
-  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup(o.in, points, triangles);
+  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup<Concurrency>(o.in, points, triangles);
   const Progress progress(read.input_triangles > 1000000);
   progress("read " + std::to_string(read.input_triangles) + " triangles");
   tool::Html_input_soup<Point> html_input;

@@ -108,7 +108,8 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
         const std::uint32_t* ids = order.data() + partition_begin[q];
         const std::size_t m = partition_begin[q + 1] - partition_begin[q];
         const std::vector<std::uint32_t> local =
-          first_equal_points(m, [&](std::size_t k) -> const Point& { return point(ids[k]); });
+          // what `point` returns: a reference, or a point decoded on the fly (binary STL)
+          first_equal_points(m, [&](std::size_t k) -> decltype(auto) { return point(ids[k]); });
         for(std::size_t k = 0; k < m; ++k) first_of[ids[k]] = ids[local[k]];
       });
     }

@@ -20,6 +20,7 @@
 
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/property_map.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
@@ -28,6 +29,7 @@
 #include <istream>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace Soup_topology {
@@ -178,18 +180,29 @@ void triangulate_polygons(const std::vector<std::vector<std::size_t>>& polygons,
 }
 
 /// throws `Invalid_input` naming the first facet of `count` with a corner that has a NaN or
-/// infinite coordinate, corner `i` being `corner_point(i)`.
-template <class CornerAccess>
+/// infinite coordinate, corner `i` being `corner_point(i)` (checked in parallel with a parallel
+/// `ConcurrencyTag`: the first bad facet is named whatever the threads).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class CornerAccess>
 void check_finite_facets(std::size_t count, const CornerAccess& corner_point, const std::string& name)
 {
-  for(std::size_t i = 0; i < 3 * count; ++i)
-    if(!Soup_topology::internal::is_finite_point(corner_point(i)))
-      throw Invalid_input(name + ": facet " + std::to_string(i / 3) + " has a non-finite coordinate");
+  const std::size_t bad = Soup_topology::internal::first_index_where<ConcurrencyTag>(
+    3 * count, [&](std::size_t i) { return !Soup_topology::internal::is_finite_point(corner_point(i)); });
+  if(bad != 3 * count)
+    throw Invalid_input(name + ": facet " + std::to_string(bad / 3) + " has a non-finite coordinate");
 }
+
+/// `ConcurrencyTag` where the points of type `Point` are read and welded in parallel (`double`
+/// coordinates), `CGAL::Sequential_tag` otherwise.
+template <class ConcurrencyTag, class Point>
+using Point_concurrency =
+  std::conditional_t<Soup_topology::internal::runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
+                     CGAL::Sequential_tag>;
 
 /// reads an STL file into `pts` and `tris`, exactly welded. A binary file is welded while it is
 /// decoded: its corners are read from the bytes where they are, never copied into triangles.
-template <class Point, class Face>
+/// With a parallel `ConcurrencyTag` the checks and the weld run on TBB's threads, with the
+/// same result.
+template <class ConcurrencyTag, class Point, class Face>
 void read_STL_soup(const char* data, std::size_t size, const std::string& name, std::vector<Point>& pts,
                    std::vector<Face>& tris, Soup_read_report& report)
 {
@@ -198,16 +211,20 @@ void read_STL_soup(const char* data, std::size_t size, const std::string& name, 
   if(looks_like_ascii_stl(data + bom, data + size)) {
     std::vector<std::array<Point, 3>> explicit_triangles;
     read_STL_triangles(data, size, explicit_triangles, name);
-    check_finite_facets(
+    check_finite_facets<Point_concurrency<ConcurrencyTag, Point>>(
       explicit_triangles.size(), [&](std::size_t i) -> const Point& { return explicit_triangles[i / 3][i % 3]; }, name);
-    ir = index_triangles(explicit_triangles, pts, tris);
+    ir = index_triangles<ConcurrencyTag>(explicit_triangles, pts, tris);
   } else {
     const std::size_t count = binary_STL_facet_count(data, size, name);
     const auto corner_point = [data](std::size_t i) { return binary_STL_corner<Point>(data, i); };
-    check_finite_facets(count, corner_point, name);
+    using Tag = Point_concurrency<ConcurrencyTag, Point>;
+    check_finite_facets<Tag>(count, corner_point, name);
     ir.input_triangles = count;
     ir.input_corners = 3 * count;
-    Soup_topology::internal::index_corners(ir.input_corners, corner_point, pts, tris, ir);
+    if constexpr(Soup_topology::internal::runs_in_parallel<Tag>())
+      Soup_topology::internal::index_corners_in_parallel<Tag>(ir.input_corners, corner_point, pts, tris, ir);
+    else
+      Soup_topology::internal::index_corners(ir.input_corners, corner_point, pts, tris, ir);
   }
   report.input_polygons = report.input_triangles = ir.input_triangles;
   report.input_vertices = ir.input_corners;
@@ -250,7 +267,7 @@ void read_polygon_soup(const char* data, std::size_t size, const std::string& fo
   report.input_triangles = tris.size();
 }
 
-template <class Point, class Face>
+template <class ConcurrencyTag, class Point, class Face>
 Soup_read_report read_triangle_soup(const char* data, std::size_t size, const std::string& format,
                                     const std::string& name, std::vector<Point>& points, std::vector<Face>& triangles)
 {
@@ -260,7 +277,7 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
   std::vector<Point> pts;
   std::vector<Face> tris;
   if(format == "stl") {
-    read_STL_soup(data, size, name, pts, tris, report);
+    read_STL_soup<ConcurrencyTag>(data, size, name, pts, tris, report);
   } else {
     if(format == "wrl") {
       read_VRML_soup(data, size, name, pts, tris, report);
@@ -268,7 +285,9 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
     } else {
       read_polygon_soup(data, size, format, name, pts, tris, report);
     }
-    report.exact_duplicates = merge_duplicate_points(pts, tris);
+    const std::size_t before = pts.size();
+    Soup_topology::internal::merge_duplicate_points_and_map<ConcurrencyTag>(pts, tris);
+    report.exact_duplicates = before - pts.size();
     report.collapsed_triangles = remove_collapsed_triangles(tris);
   }
   points.swap(pts);
@@ -302,10 +321,17 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
 /// \param filename the file; its extension gives the format
 /// \param points receives the distinct points
 /// \param triangles receives the triangles, index triples into `points`
+///
+/// With `CGAL::Parallel_tag` (or `CGAL::Parallel_if_available_tag` with TBB) the checks and the
+/// exact weld run on TBB's threads (points of `double` coordinates; the parse of a text format
+/// stays sequential); the points, the triangles, their order and the report are the same on any
+/// number of threads.
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
+///         or `CGAL::Parallel_if_available_tag`
 /// \param limit the most bytes read from an input that is not a regular file
 /// \throws Read_error if the file cannot be read, is a folder, or is malformed; Invalid_input for
 /// an index out of range or a non-finite coordinate. `points` and `triangles` are unchanged then.
-template <class Point, class Face>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class Face>
 Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Point>& points,
                                     std::vector<Face>& triangles, std::size_t limit = default_stream_size_limit)
 {
@@ -313,7 +339,7 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
   internal::check_format(format, filename);
   const std::string data =
     Soup_topology::internal::read_file_bounded(filename, limit, internal::Format_prefix_check{format, filename});
-  return internal::read_triangle_soup(data.data(), data.size(), format, filename, points, triangles);
+  return internal::read_triangle_soup<ConcurrencyTag>(data.data(), data.size(), format, filename, points, triangles);
 }
 
 /// \ingroup PkgSoupTopologyIO
@@ -326,12 +352,13 @@ Soup_read_report read_triangle_soup(const std::string& filename, std::vector<Poi
 /// \param points receives the distinct points
 /// \param triangles receives the triangles, index triples into `points`
 /// \param name the name of the input in the messages
-template <class Point, class Face>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class Face>
 Soup_read_report read_triangle_soup(const char* data, std::size_t size, const std::string& format,
                                     std::vector<Point>& points, std::vector<Face>& triangles,
                                     const std::string& name = "<memory>")
 {
-  return internal::read_triangle_soup(data, size, internal::normalized_format(format), name, points, triangles);
+  return internal::read_triangle_soup<ConcurrencyTag>(data, size, internal::normalized_format(format), name, points,
+                                                      triangles);
 }
 
 /// \ingroup PkgSoupTopologyIO
@@ -344,7 +371,7 @@ Soup_read_report read_triangle_soup(const char* data, std::size_t size, const st
 /// \param triangles receives the triangles, index triples into `points`
 /// \param name the name of the input in the messages
 /// \param limit the most bytes read
-template <class Point, class Face>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class Face>
 Soup_read_report read_triangle_soup(std::istream& in, const std::string& format, std::vector<Point>& points,
                                     std::vector<Face>& triangles, const std::string& name = "<stream>",
                                     std::size_t limit = default_stream_size_limit)
@@ -352,7 +379,7 @@ Soup_read_report read_triangle_soup(std::istream& in, const std::string& format,
   const std::string f = internal::normalized_format(format);
   internal::check_format(f, name);
   const std::string data = Soup_topology::internal::read_bounded(in, name, limit, internal::Format_prefix_check{f, name});
-  return internal::read_triangle_soup(data.data(), data.size(), f, name, points, triangles);
+  return internal::read_triangle_soup<ConcurrencyTag>(data.data(), data.size(), f, name, points, triangles);
 }
 
 } // namespace IO
