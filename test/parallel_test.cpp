@@ -1032,6 +1032,70 @@ TEST(ParallelGapAnalysis, CrowdedBordersAreRefusedOnAnyNumberOfThreads)
 }
 #endif
 
+// The octree built on TBB's threads is the sequential tree: the same workspace, nodes, leaves,
+// order of the points and the same first non-finite point named.
+template <class Kernel>
+void expect_same_tree(const ST::Octree<Kernel>& a, const ST::Octree<Kernel>& b, std::size_t n)
+{
+  EXPECT_EQ(bits(std::vector<double>{a.workspace_origin()[0], a.workspace_origin()[1], a.workspace_origin()[2],
+                                     a.workspace_side()}),
+            bits(std::vector<double>{b.workspace_origin()[0], b.workspace_origin()[1], b.workspace_origin()[2],
+                                     b.workspace_side()}));
+  ASSERT_EQ(a.number_of_nodes(), b.number_of_nodes());
+  std::size_t different = 0;
+  for(std::uint32_t node = 0; node < a.number_of_nodes(); ++node) {
+    const auto pa = a.points(node), pb = b.points(node);
+    different += a.is_leaf(node) != b.is_leaf(node) || a.depth(node) != b.depth(node) ||
+                 !std::equal(pa.begin(), pa.end(), pb.begin(), pb.end());
+  }
+  for(std::size_t i = 0; i < n; ++i)
+    different += a.morton_code(i) != b.morton_code(i) || a.leaf(i) != b.leaf(i) || !(a.point(i) == b.point(i));
+  EXPECT_EQ(different, 0u);
+}
+
+TEST(ParallelOctree, BuildGivesTheSequentialTree)
+{
+  // More than 2^20 points (the parallel radix sort), and a small cloud with duplicates and zeros
+  // of both signs on an extreme coordinate (the box put together from the blocks' boxes).
+  Mesh_data m = load("clean/elephant.off");
+  for(int level = 0; level < 3; ++level) soup_test::subdivide_midpoints(m.points, m.triangles);
+  const Mesh_data soup = jittered_exploded(m, 1e-6, 31);
+  ASSERT_GT(soup.points.size(), std::size_t(1) << 20);
+  std::vector<Point> small;
+  std::mt19937 rng(5);
+  for(int i = 0; i < 50000; ++i)
+    small.emplace_back(i % 7 == 0 ? -0.0 : double(rng() % 100), i % 11 == 0 ? 0.0 : double(rng() % 3), double(rng() % 1000) / 7);
+  for(const std::vector<Point>* points : {&soup.points, static_cast<const std::vector<Point>*>(&small)}) {
+    SCOPED_TRACE(points->size());
+    const ST::Octree<Epick> expected(*points);
+    const ST::Octree<Epick> expected_np(*points, ST::parameters::bucket_capacity(32));
+    for_each_thread_count([&](int) {
+      const ST::Octree<Epick> tree(*points, CGAL::Identity_property_map<Point>(), Epick(), Parallel());
+      expect_same_tree(tree, expected, points->size());
+      const ST::Octree<Epick> tree_np(*points, ST::parameters::bucket_capacity(32), Parallel());
+      expect_same_tree(tree_np, expected_np, points->size());
+    });
+  }
+  // Exact coordinates: built sequentially whatever the tag, the same tree.
+  std::vector<Epeck::Point_3> exact;
+  for(std::size_t i = 0; i < 5000; ++i) exact.emplace_back(small[i].x(), small[i].y(), small[i].z());
+  const ST::Octree<Epeck> exact_expected(exact);
+  const ST::Octree<Epeck> exact_tree(exact, CGAL::Identity_property_map<Epeck::Point_3>(), Epeck(), Parallel());
+  expect_same_tree(exact_tree, exact_expected, exact.size());
+  // The first non-finite point is named, whatever the threads.
+  std::vector<Point> bad = soup.points;
+  bad[700000] = Point(0, std::nan(""), 0);
+  bad[900000] = Point(HUGE_VAL, 0, 0);
+  for_each_thread_count([&](int) {
+    try {
+      const ST::Octree<Epick> tree(bad, CGAL::Identity_property_map<Point>(), Epick(), Parallel());
+      ADD_FAILURE() << "no exception";
+    } catch(const ST::Invalid_input& e) {
+      EXPECT_EQ(std::string(e.what()), "Soup_topology::Octree: point 700000 has a non-finite coordinate");
+    }
+  });
+}
+
 // The concurrent searches of the octree hand over the answers of the sequential ones: each
 // point's neighbourhood, each segment's, exactly once.
 TEST(ParallelOctree, ConcurrentSearchesGiveTheSequentialAnswers)

@@ -133,6 +133,20 @@ public:
     build(points, point_map, default_bucket_capacity, default_maximum_depth);
   }
 
+  /// builds the tree over `points` with the default parameters, on TBB's threads with
+  /// `CGAL::Parallel_tag` (or `CGAL::Parallel_if_available_tag` with TBB) when the coordinates
+  /// are stored as `double`: the box, the Morton codes, their sort and the copy of the points in
+  /// their order run in parallel, the nodes are split on one thread. The tree is the same as the
+  /// sequential one, on any number of threads.
+  /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` or
+  ///         `CGAL::Parallel_if_available_tag` (given as the last argument)
+  template <typename PointRange, typename ConcurrencyTag>
+  Octree(const PointRange& points, PointMap point_map, const Geom_traits& gt, ConcurrencyTag)
+    : gt_(gt)
+  {
+    build<ConcurrencyTag>(points, point_map, default_bucket_capacity, default_maximum_depth);
+  }
+
   /// builds the tree over `points`.
   ///
   /// \tparam PointRange a random-access range whose values `point_map` maps to `Point_3`
@@ -160,6 +174,14 @@ public:
   ///        parameter is out of range
   template <typename PointRange, typename T, typename Tag, typename Base>
   Octree(const PointRange& points, const CGAL::Named_function_parameters<T, Tag, Base>& np)
+    : Octree(points, np, CGAL::Sequential_tag())
+  {
+  }
+
+  /// builds the tree over `points` with the named parameters `np` (see above), in parallel as the
+  /// constructor with a `ConcurrencyTag` above: the same tree.
+  template <typename PointRange, typename T, typename Tag, typename Base, typename ConcurrencyTag>
+  Octree(const PointRange& points, const CGAL::Named_function_parameters<T, Tag, Base>& np, ConcurrencyTag)
     : gt_(CGAL::parameters::choose_parameter(
           CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits), Geom_traits()))
   {
@@ -173,7 +195,7 @@ public:
       choose_parameter(get_parameter(np, internal_np::maximum_depth), default_maximum_depth));
     strategy_ = choose_parameter(get_parameter(np, internal_np::segment_query_strategy),
                                  Segment_query_strategy::INDEX_SPACE_BOX);
-    build(points, pm, capacity, depth);
+    build<ConcurrencyTag>(points, pm, capacity, depth);
   }
 
   /// @}
@@ -1213,9 +1235,14 @@ private:
     double max_abs = 0, err = 0;
   };
 
-  template <typename PointRange>
+  // With a parallel `ConcurrencyTag` and coordinates stored as `double`, the box, the keys, their
+  // sort and the gather of the points run on TBB's threads (the nodes are split on one); every
+  // step gives the sequential result, so the tree is the same.
+  template <typename ConcurrencyTag = CGAL::Sequential_tag, typename PointRange>
   void build(const PointRange& range, const PointMap& pm, std::size_t capacity, std::size_t depth)
   {
+    using Tag = std::conditional_t<double_coordinates && internal::runs_in_parallel<ConcurrencyTag>(), ConcurrencyTag,
+                                   CGAL::Sequential_tag>;
     check_build_parameters(capacity, depth);
     capacity_ = capacity;
     depth_ = static_cast<unsigned>(depth);
@@ -1223,11 +1250,64 @@ private:
     if(n >= std::size_t(npos))
       throw std::length_error("Soup_topology::Octree: too many points (at most 2^32 - 2)");
     std::vector<std::array<double, 3>> approx; // kept only for a non-double kernel
-    const Approximate_box box = approximate_points(range, pm, n, approx);
+    const Approximate_box box = internal::runs_in_parallel<Tag>() ? box_in_parallel<Tag>(range, pm, n)
+                                                                  : approximate_points(range, pm, n, approx);
     set_workspace(box);
-    std::vector<Key> keys = sorted_keys(range, pm, n, approx);
-    gather_points(range, pm, keys, approx);
+    std::vector<Key> keys = sorted_keys<Tag>(range, pm, n, approx);
+    gather_points<Tag>(range, pm, keys, approx);
     build_nodes(keys);
+  }
+
+  static void throw_non_finite_point(std::size_t i)
+  {
+    throw Invalid_input("Soup_topology::Octree: point " + std::to_string(i) + " has a non-finite coordinate");
+  }
+
+  // step 1 by blocks (`double` coordinates): the first non-finite point, then the box of each
+  // block, put together in block order with the comparisons of `approximate_points()` (the first
+  // of equal extreme coordinates is kept, so even the sign of a zero is the sequential one)
+  template <typename Tag, typename PointRange>
+  Approximate_box box_in_parallel(const PointRange& range, const PointMap& pm, std::size_t n) const
+  {
+    const auto first = std::begin(range);
+    auto coordinates = [&](std::size_t i) {
+      const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
+      return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+    };
+    const std::size_t bad = internal::first_index_where<Tag>(n, [&](std::size_t i) {
+      const std::array<double, 3> c = coordinates(i);
+      return !(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]));
+    });
+    if(bad != n)
+      throw_non_finite_point(bad);
+    std::vector<Approximate_box> boxes(internal::number_of_blocks(n));
+    internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      Approximate_box& box = boxes[b];
+      for(std::size_t i = begin; i != end; ++i)
+        extend(box, coordinates(i), i == begin);
+    });
+    Approximate_box box;
+    for(std::size_t b = 0; b < boxes.size(); ++b)
+    {
+      for(std::size_t k = 0; k < 3; ++k)
+      {
+        if(b == 0 || boxes[b].lo[k] < box.lo[k]) box.lo[k] = boxes[b].lo[k];
+        if(b == 0 || boxes[b].hi[k] > box.hi[k]) box.hi[k] = boxes[b].hi[k];
+      }
+      box.max_abs = std::max(box.max_abs, boxes[b].max_abs);
+    }
+    return box;
+  }
+
+  // `box` grown to hold `c` (`first`: the box holds nothing yet)
+  static void extend(Approximate_box& box, const std::array<double, 3>& c, bool first)
+  {
+    for(std::size_t k = 0; k < 3; ++k)
+    {
+      if(first || c[k] < box.lo[k]) box.lo[k] = c[k];
+      if(first || c[k] > box.hi[k]) box.hi[k] = c[k];
+      box.max_abs = std::max(box.max_abs, std::abs(c[k]));
+    }
   }
 
   static void check_build_parameters(std::size_t capacity, std::size_t depth)
@@ -1256,8 +1336,7 @@ private:
       for(std::size_t k = 0; k < 3; ++k)
       {
         if(!std::isfinite(iv[k].first) || !std::isfinite(iv[k].second))
-          throw Invalid_input("Soup_topology::Octree: point " + std::to_string(i) +
-                              " has a non-finite coordinate");
+          throw_non_finite_point(i);
         const double c = iv[k].first == iv[k].second ? iv[k].first
                                                      : 0.5 * iv[k].first + 0.5 * iv[k].second;
         if(!double_coordinates)
@@ -1293,14 +1372,13 @@ private:
   }
 
   // step 3: Morton codes, sorted with the point index as tie-breaker (a deterministic layout)
-  template <typename PointRange>
+  template <typename Tag, typename PointRange>
   std::vector<Key> sorted_keys(const PointRange& range, const PointMap& pm, std::size_t n,
                                const std::vector<std::array<double, 3>>& approx) const
   {
     const auto first = std::begin(range);
     std::vector<Key> keys(n);
-    for(std::size_t i = 0; i < n; ++i)
-    {
+    internal::for_each_index<Tag>(n, [&](std::size_t i) {
       if constexpr(double_coordinates)
       {
         const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
@@ -1308,18 +1386,55 @@ private:
       }
       else
         keys[i] = Key{code_of(approx[i]), std::uint32_t(i)};
-    }
-    sort_keys(keys);
+    });
+    if constexpr(internal::runs_in_parallel<Tag>())
+      sort_keys_in_parallel<Tag>(keys);
+    else
+      sort_keys(keys);
     return keys;
   }
 
+  // `sort_keys()` on TBB's threads: the keys are made in index order, so a stable radix sort by
+  // code (`internal::sort_by_key()`, over all the bits of the codes) orders them by (code, id)
+  // as `sort_keys()` does
+  template <typename Tag>
+  void sort_keys_in_parallel(std::vector<Key>& keys) const
+  {
+    struct Item
+    {
+      std::uint64_t key;
+      std::uint32_t id;
+    };
+    std::vector<Item> items(keys.size()), buffer;
+    internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { items[i] = Item{keys[i].code, keys[i].id}; });
+    internal::sort_by_key<Tag>(items, buffer, 3 * depth_);
+    std::vector<Item>().swap(buffer);
+    internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { keys[i] = Key{items[i].key, items[i].id}; });
+  }
+
   // step 4: the points in the order of the keys, with their indices both ways
-  template <typename PointRange>
+  template <typename Tag, typename PointRange>
   void gather_points(const PointRange& range, const PointMap& pm, const std::vector<Key>& keys,
                      const std::vector<std::array<double, 3>>& approx)
   {
     const auto first = std::begin(range);
     const std::size_t n = keys.size();
+    if constexpr(internal::runs_in_parallel<Tag>())
+    {
+      // by blocks of positions: each position and each id is written once
+      approx_.clear();
+      points_.clear();
+      points_.resize(n);
+      ids_.resize(n);
+      positions_.resize(n);
+      internal::for_each_index<Tag>(n, [&](std::size_t j) {
+        const std::uint32_t id = keys[j].id;
+        points_[j] = get(pm, first[id]);
+        ids_[j] = id;
+        positions_[id] = std::uint32_t(j);
+      });
+      return;
+    }
     points_.clear();
     points_.reserve(n);
     approx_.clear();

@@ -117,27 +117,6 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
   }
 }
 
-/// the first `i` in `[0, n)` for which `bad(i)` holds, or `n` (blocks checked in parallel when
-/// `ConcurrencyTag` asks for it; the smallest index wins whatever the threads).
-template <class ConcurrencyTag, class Predicate>
-std::size_t first_index_where(std::size_t n, const Predicate& bad)
-{
-  if constexpr(!runs_in_parallel<ConcurrencyTag>()) {
-    for(std::size_t i = 0; i < n; ++i)
-      if(bad(i)) return i;
-    return n;
-  } else {
-    std::vector<std::size_t> first(number_of_blocks(n), n);
-    for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      for(std::size_t i = begin; i != end; ++i)
-        if(bad(i)) { first[b] = i; return; }
-    });
-    for(const std::size_t i : first)
-      if(i != n) return i;
-    return n;
-  }
-}
-
 /// `index_corners()` computed in parallel (see `first_equal_points_in_parallel()`): the points
 /// are numbered by the rank of their first corner, found by prefix sums over blocks, so the
 /// points, the triangles and their order are those of the sequential pass.

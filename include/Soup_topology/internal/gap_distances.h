@@ -103,14 +103,18 @@ class Nearest_border_search
   using Tree = Octree<Geom_traits>;
 
 public:
+  /// (the octree built on TBB's threads with a parallel `ConcurrencyTag`: the same tree)
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   Nearest_border_search(const std::vector<Point>& points, const Adjacency_tables& tables,
-                        const std::vector<std::size_t>& border, const Geom_traits& gt)
+                        const std::vector<std::size_t>& border, const Geom_traits& gt,
+                        ConcurrencyTag tag = ConcurrencyTag())
     : points_(points), tables_(tables), border_(border), gt_(gt),
       squared_distance_(gt.compute_squared_distance_3_object()), nearest_(border.size())
   {
     border_points_.reserve(border.size());
     for(std::size_t v : border) border_points_.push_back(points[v]);
-    tree_.emplace(border_points_, parameters::bucket_capacity(border_bucket_capacity, CGAL::parameters::geom_traits(gt)));
+    tree_.emplace(border_points_, parameters::bucket_capacity(border_bucket_capacity, CGAL::parameters::geom_traits(gt)),
+                  tag);
   }
 
   /// the bucket capacity of the octree of the border vertices: larger than the default, as the
@@ -360,9 +364,9 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
                                                             double radius, const Geom_traits& gt)
 {
   if(border.empty()) return {};
-  Nearest_border_search<Geom_traits> search(points, tables, border, gt);
-  const double first_radius = radius * first_gap_pass_fraction;
   using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
+  Nearest_border_search<Geom_traits> search(points, tables, border, gt, Tag());
+  const double first_radius = radius * first_gap_pass_fraction;
   search.template search_all<Tag>(first_radius, Candidates::COUNT_WHILE_SEARCHING);
   // Relative rounding of a distance evaluated in double is a few units in the last place.
   const double decided_below = first_radius * (1 - 1e-9);

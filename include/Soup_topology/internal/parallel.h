@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 #include <vector>
 
@@ -183,6 +184,97 @@ void concatenate_in_block_order(std::vector<std::vector<T>>& buffers, std::vecto
     out.insert(out.end(), b.begin(), b.end());
     std::vector<T>().swap(b);
   }
+}
+
+/// the first `i` in `[0, n)` for which `bad(i)` holds, or `n` (blocks checked in parallel when
+/// `ConcurrencyTag` asks for it; the smallest index wins whatever the threads).
+template <class ConcurrencyTag, class Predicate>
+std::size_t first_index_where(std::size_t n, const Predicate& bad)
+{
+  if constexpr(!runs_in_parallel<ConcurrencyTag>()) {
+    for(std::size_t i = 0; i < n; ++i)
+      if(bad(i)) return i;
+    return n;
+  } else {
+    std::vector<std::size_t> first(number_of_blocks(n), n);
+    for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i)
+        if(bad(i)) { first[b] = i; return; }
+    });
+    for(const std::size_t i : first)
+      if(i != n) return i;
+    return n;
+  }
+}
+
+/// sorts `items` by their member `key` (an unsigned 64-bit integer), stably, with a least
+/// significant digit radix sort of 16-bit digits over the `bits` low bits of the keys (the
+/// others are zero); a digit that all keys share is skipped. `buffer` is scratch space.
+template <class Item>
+void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+{
+  const std::size_t n = items.size();
+  if(n < 2) return;
+  if(n < 4096) {
+    // Fewer items than the digits' counters: a comparison sort, stable as well, the same order.
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+    return;
+  }
+  buffer.resize(n);
+  std::vector<std::size_t> count(std::size_t(1) << 16);
+  for(unsigned shift = 0; shift < bits; shift += 16) {
+    std::fill(count.begin(), count.end(), 0);
+    for(const Item& item : items) ++count[(item.key >> shift) & 0xffff];
+    if(count[(items[0].key >> shift) & 0xffff] == n) continue; // one digit for all: already in order
+    std::size_t sum = 0;
+    for(std::size_t& c : count) { const std::size_t here = c; c = sum; sum += here; }
+    for(const Item& item : items) buffer[count[(item.key >> shift) & 0xffff]++] = item;
+    items.swap(buffer);
+  }
+}
+
+/// `radix_sort_by_key()`, on TBB's threads when `ConcurrencyTag` asks for it and the items are
+/// many: each pass counts the digits of 16 blocks of items in parallel, places the items of a
+/// block after those of the blocks before it with the same digit, and scatters the blocks in
+/// parallel. A stable sort by key has one result: it is that of `radix_sort_by_key()`.
+template <class ConcurrencyTag, class Item>
+void sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+{
+  const std::size_t n = items.size();
+  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    if(n >= (std::size_t(1) << 20)) {
+      constexpr std::size_t digits = std::size_t(1) << 16;
+      const std::size_t block_size = (n + 15) / 16, blocks = number_of_blocks(n, block_size);
+      buffer.resize(n);
+      std::vector<std::size_t> offset(blocks * digits); // by block, then digit
+      for(unsigned shift = 0; shift < bits; shift += 16) {
+        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+          std::size_t* const count = offset.data() + b * digits;
+          std::fill(count, count + digits, 0);
+          for(std::size_t i = begin; i != end; ++i) ++count[(items[i].key >> shift) & 0xffff];
+        });
+        const std::size_t first_digit = (items[0].key >> shift) & 0xffff;
+        std::size_t with_first_digit = 0;
+        for(std::size_t b = 0; b < blocks; ++b) with_first_digit += offset[b * digits + first_digit];
+        if(with_first_digit == n) continue; // one digit for all: already in order
+        std::size_t sum = 0;
+        for(std::size_t d = 0; d < digits; ++d)
+          for(std::size_t b = 0; b < blocks; ++b) {
+            std::size_t& c = offset[b * digits + d];
+            const std::size_t here = c;
+            c = sum;
+            sum += here;
+          }
+        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+          std::size_t* const next = offset.data() + b * digits;
+          for(std::size_t i = begin; i != end; ++i) buffer[next[(items[i].key >> shift) & 0xffff]++] = items[i];
+        });
+        items.swap(buffer);
+      }
+      return;
+    }
+  }
+  radix_sort_by_key(items, buffer, bits);
 }
 
 } // namespace internal

@@ -331,7 +331,9 @@ private:
     dense_ = tolerances_ == nullptr &&
              (parallel_ ? largest_tolerance_cell<CGAL::Parallel_if_available_tag>(candidate_points_, eps_)
                         : largest_tolerance_cell(candidate_points_, eps_)) > dense_cell_size;
-    tree_ = std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
+    tree_ = parallel_ ? std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_,
+                                                         CGAL::Parallel_if_available_tag())
+                      : std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
     // The tree holds the same points: the copy goes, unless the grid of a dense cluster reads it.
     if(!dense_) std::vector<Point>().swap(candidate_points_);
     find_same_triangle_pairs();
