@@ -221,15 +221,12 @@ private:
     const FT& e = smaller_tolerance((*tolerances_)[u], (*tolerances_)[v]);
     return e * e;
   }
-  // With per-vertex tolerances: `true` if u and v are within the tolerance of the pair. With
-  // double coordinates a squared distance far from the squared tolerance (computed in double,
-  // within a few ulps of the exact value) is decided without the exact predicate, as
-  // `count_short_edges()` does for one tolerance; otherwise `Compare_squared_distance_3` decides.
-  bool within_pair_tolerance(size_type u, size_type v) const
+  // `true` if the squared distance of p and q is at most e2. With double coordinates a squared
+  // distance far from e2 (computed in double, within a few ulps of the exact value) is decided
+  // without the exact predicate; otherwise `Compare_squared_distance_3` decides. The same
+  // decision either way.
+  bool within_squared(const Point& p, const Point& q, const FT& e2) const
   {
-    const FT e2 = pair_eps2(u, v);
-    const Point& p = point(u);
-    const Point& q = point(v);
     if constexpr(std::is_same<FT, double>::value) {
       const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
       const double d2 = dx * dx + dy * dy + dz * dz;
@@ -240,6 +237,8 @@ private:
     }
     return kernel_.compare_squared_distance_3_object()(p, q, e2) != CGAL::LARGER;
   }
+  // With per-vertex tolerances: `true` if u and v are within the tolerance of the pair.
+  bool within_pair_tolerance(size_type u, size_type v) const { return within_squared(point(u), point(v), pair_eps2(u, v)); }
   // The largest distance a corner of the triangle `tr` can move (in double): the tolerance, or
   // with per-vertex tolerances the largest of its corners' (a vertex moves by at most its own).
   double largest_move(const Adjacency_tables::Triangle& tr) const
@@ -252,29 +251,14 @@ private:
   // Short edges: where the minimum feature separation is not met.
   void count_short_edges()
   {
-    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
     const FT eps2 = eps_ * eps_;
-    // With double coordinates, a squared length far above eps2 (computed in double, within a
-    // few ulps of the exact value) is decided without the exact predicate.
-    const double eps2d = CGAL::to_double(eps2);
-    constexpr bool double_coordinates = std::is_same<FT, double>::value;
     for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
       for(int i = 0; i < 3; ++i) {
         const size_type u = tables_.neighbor(t, i);
         if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
         const size_type pv = tables_.vertex(t, i), qv = tables_.vertex(t, (i + 1) % 3);
-        const Point& p = point(pv);
-        const Point& q = point(qv);
-        if(tolerances_ != nullptr) {
-          if(within_pair_tolerance(pv, qv)) ++report_.short_edges;
-          continue;
-        }
-        if constexpr(double_coordinates) {
-          const double dx = p.x() - q.x(), dy = p.y() - q.y(), dz = p.z() - q.z();
-          const double d2 = dx * dx + dy * dy + dz * dz;
-          if(d2 > eps2d * (1 + 1e-12) && d2 > 1e-250) continue;
-        }
-        if(compare_sq(p, q, eps2) != CGAL::LARGER) ++report_.short_edges;
+        if(tolerances_ != nullptr ? within_pair_tolerance(pv, qv) : within_squared(point(pv), point(qv), eps2))
+          ++report_.short_edges;
       }
   }
 
@@ -352,14 +336,13 @@ private:
     std::vector<std::uint32_t>& local = candidate_of_;
     local.assign(points_.size(), not_candidate);
     for(std::size_t c = 0; c < candidates_.size(); ++c) local[candidates_[c]] = static_cast<std::uint32_t>(c);
-    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
     const FT eps2 = eps_ * eps_;
     for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
       for(int i = 0; i < 3; ++i) {
         const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
         if(a == not_candidate || b == not_candidate) continue;
         if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
-                                  : compare_sq(candidate_point(a), candidate_point(b), eps2) != CGAL::LARGER)
+                                  : within_squared(candidate_point(a), candidate_point(b), eps2))
           same_triangle_pairs_.emplace_back(std::min(a, b), std::max(a, b));
       }
     const Octree<Kernel>& tree = *tree_;
@@ -716,7 +699,6 @@ private:
   // cluster (the collapsed edges are all shorter than the tolerance).
   bool collapsible(size_type t, size_type mv, size_type rep_v) const
   {
-    const typename Kernel::Compare_squared_distance_3 compare_sq = kernel_.compare_squared_distance_3_object();
     const FT eps2 = eps_ * eps_;
     const std::uint32_t component = root_[candidate_of_[rep_v]];
     for(size_type w : tables_.triangle(t)) {
@@ -732,7 +714,7 @@ private:
         if(!within_pair_tolerance(mv, w)) return false;
         continue;
       }
-      if(compare_sq(point(mv), point(w), eps2) == CGAL::LARGER) return false;
+      if(!within_squared(point(mv), point(w), eps2)) return false;
     }
     return true;
   }
