@@ -796,6 +796,57 @@ TEST(ParallelSTL, ReadTriangleSoupOfEveryFormat)
   });
 }
 
+TEST(ParallelChecks, TheFirstBadFaceOrPointIsNamed)
+{
+  // The entry checks run by blocks on threads: the face or point named is the first one, with
+  // the message of the sequential check, whatever the threads.
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  ASSERT_GT(m.triangles.size(), 80000u);
+  const auto message = [](const auto& run) {
+    try {
+      run();
+    } catch(const ST::Invalid_input& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  std::vector<std::vector<Triangle>> bad_soups(3, m.triangles);
+  bad_soups[0][60001][2] = bad_soups[0][60001][0];                 // a repeated index
+  bad_soups[0][70000][1] = m.points.size();                        // after it: out of range
+  bad_soups[1][50000][0] = m.points.size() + 5;                    // out of range
+  bad_soups[1][79999][2] = bad_soups[1][79999][1];
+  bad_soups[2][m.triangles.size() - 1][1] = bad_soups[2][m.triangles.size() - 1][0]; // the last face
+  std::vector<Point> bad_points = m.points;
+  const std::size_t first_bad_point = bad_points.size() / 2 + 3;
+  bad_points[first_bad_point] = Point(0, 0, std::nan(""));
+  bad_points[bad_points.size() - 2] = Point(HUGE_VAL, 0, 0);
+  for(const std::vector<Triangle>& soup : bad_soups) {
+    const std::string expected = message([&] { ST::Adjacency_tables(soup, m.points.size()); });
+    ASSERT_NE(expected.find("face "), std::string::npos) << expected;
+    for_each_thread_count([&](int) {
+      EXPECT_EQ(message([&] { ST::Adjacency_tables(soup, m.points.size(), Parallel()); }), expected);
+      std::vector<Point> p = m.points;
+      std::vector<Triangle> t = soup;
+      EXPECT_EQ(message([&] { ST::orient_triangle_soup<Parallel>(p, t); }), expected);
+    });
+  }
+  const std::string expected = message([&] {
+    std::vector<Point> p = bad_points;
+    std::vector<Triangle> t = m.triangles;
+    ST::reconstruct_topology(p, t, CGAL::parameters::snapping_tolerance(0.0));
+  });
+  EXPECT_EQ(expected, "point " + std::to_string(first_bad_point) + " has a non-finite coordinate");
+  for_each_thread_count([&](int) {
+    std::vector<Point> p = bad_points;
+    std::vector<Triangle> t = m.triangles;
+    EXPECT_EQ(message([&] { ST::reconstruct_topology<Parallel>(p, t, CGAL::parameters::snapping_tolerance(0.0)); }),
+              expected);
+    EXPECT_EQ(message([&] { ST::orient_triangle_soup<Parallel>(p, t); }), expected);
+  });
+}
+
 TEST(ParallelIndexTriangles, EmptyAndTinySoups)
 {
   using Soup = std::vector<std::array<Point, 3>>;

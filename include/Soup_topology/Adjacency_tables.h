@@ -127,7 +127,7 @@ public:
   Adjacency_tables(const FaceRange& faces, std::size_t number_of_points, ConcurrencyTag tag)
   {
     (void)tag;
-    internal::check_triangle_soup(faces, number_of_points);
+    internal::check_triangle_soup<ConcurrencyTag>(faces, number_of_points);
     const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(faces), std::end(faces)));
     using Face_iterator = decltype(std::begin(faces));
     constexpr bool random_access = std::is_base_of<std::random_access_iterator_tag,

@@ -141,8 +141,8 @@ Orientation_report orient_triangle_soup_with_tables(PointRange& pts, TriangleRan
   using Default_kernel = typename CGAL::Kernel_traits<Point>::Kernel;
   using Kernel = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::geom_traits_t, NamedParameters,
                                                                      Default_kernel>::type;
-  check_triangle_soup(tris, pts.size());
-  check_finite_points(pts, CGAL::Identity_property_map<Point>());
+  check_triangle_soup<ConcurrencyTag>(tris, pts.size());
+  check_finite_points<ConcurrencyTag>(pts, CGAL::Identity_property_map<Point>());
   const Orientation_policy policy =
     choose_parameter(get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
   Patch_orientation_rules rules;

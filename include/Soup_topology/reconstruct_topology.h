@@ -570,7 +570,7 @@ Reconstruction_report reconstruct_soup_in_place(PointRange& points, TriangleRang
     CGAL::parameters::choose_parameter<PointMap>(CGAL::parameters::get_parameter(np, CGAL::internal_np::point_map));
   const Geom_traits gt =
     CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
-  check_indexed_soup(points, pm, triangles);
+  check_indexed_soup<ConcurrencyTag>(points, pm, triangles);
   std::vector<Point> pts;
   std::vector<std::uint32_t> input_index;
   if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&

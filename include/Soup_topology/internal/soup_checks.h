@@ -7,8 +7,10 @@
 #define SOUP_TOPOLOGY_INTERNAL_SOUP_CHECKS_H
 
 #include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/internal/parallel.h>
 
 #include <CGAL/number_utils.h>
+#include <CGAL/tags.h>
 
 #include <array>
 #include <cmath>
@@ -103,40 +105,89 @@ inline void check_vertex_index(std::size_t v, std::size_t number_of_points, std:
                         " is out of range (" + std::to_string(number_of_points) + " points)");
 }
 
+/// throws `Invalid_input` if the face `f`, number `face_id`, is not a triangle of three distinct
+/// vertex indices below `number_of_points`.
+template <class Face>
+void check_triangle(const Face& f, std::size_t face_id, std::size_t number_of_points)
+{
+  const std::size_t n = face_size(f);
+  if(n != 3)
+    throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(n) +
+                        " vertices; a triangle soup needs exactly 3");
+  std::size_t v[3];
+  for(std::size_t k = 0; k < 3; ++k) {
+    v[k] = corner(f, k, face_id);
+    check_vertex_index(v[k], number_of_points, face_id);
+  }
+  if(v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+    throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" + std::to_string(v[0]) +
+                        ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")");
+}
+
+/// `true` if the iterators of `Range` are random access.
+template <class Range>
+constexpr bool has_random_access()
+{
+  using Iterator = decltype(std::begin(std::declval<const Range&>()));
+  return std::is_base_of<std::random_access_iterator_tag,
+                         typename std::iterator_traits<Iterator>::iterator_category>::value;
+}
+
 /// throws `Invalid_input` naming the first face that is not a triangle of three distinct,
-/// in-range vertex indices. Reads only: the caller's data is never changed.
-template <class FaceRange>
+/// in-range vertex indices. Reads only: the caller's data is never changed. With a parallel
+/// `ConcurrencyTag` (and a random-access range) the faces are checked by blocks, and the first
+/// bad face is checked again alone: the same face and the same message as sequentially.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class FaceRange>
 void check_triangle_soup(const FaceRange& faces, std::size_t number_of_points)
 {
   if(number_of_points >= static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max() - 2))
     throw Invalid_input("too many points (" + std::to_string(number_of_points) +
                         "): indices are stored on 32 bits");
   std::size_t face_id = 0;
-  for(const auto& f : faces) {
-    const std::size_t n = face_size(f);
-    if(n != 3)
-      throw Invalid_input("face " + std::to_string(face_id) + " has " + std::to_string(n) +
-                          " vertices; a triangle soup needs exactly 3");
-    std::size_t v[3];
-    for(std::size_t k = 0; k < 3; ++k) {
-      v[k] = corner(f, k, face_id);
-      check_vertex_index(v[k], number_of_points, face_id);
+  if constexpr(runs_in_parallel<ConcurrencyTag>() && has_random_access<FaceRange>()) {
+    const auto first = std::begin(faces);
+    const std::size_t m = static_cast<std::size_t>(std::distance(first, std::end(faces)));
+    auto face = [&](std::size_t i) -> decltype(auto) { return *(first + static_cast<std::ptrdiff_t>(i)); };
+    const std::size_t bad = first_index_where<ConcurrencyTag>(m, [&](std::size_t i) {
+      try {
+        check_triangle(face(i), i, number_of_points);
+        return false;
+      } catch(const Invalid_input&) {
+        return true;
+      }
+    });
+    if(bad != m) check_triangle(face(bad), bad, number_of_points);
+    face_id = m;
+  } else {
+    for(const auto& f : faces) {
+      check_triangle(f, face_id, number_of_points);
+      ++face_id;
     }
-    if(v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
-      throw Invalid_input("face " + std::to_string(face_id) + " repeats a vertex index (" +
-                          std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
-                          std::to_string(v[2]) + ")");
-    ++face_id;
   }
   if(face_id >= static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max() - 2))
     throw Invalid_input("too many triangles (" + std::to_string(face_id) +
                         "): indices are stored on 32 bits");
 }
 
-/// throws `Invalid_input` naming the first point with a NaN or infinite coordinate.
-template <class PointRange, class PointMap>
+/// throws `Invalid_input` naming the first point with a NaN or infinite coordinate (checked by
+/// blocks with a parallel `ConcurrencyTag`, a random-access range and `double` coordinates: the
+/// same point named).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class PointMap>
 void check_finite_points(const PointRange& points, const PointMap& point_map)
 {
+  using Point = std::decay_t<decltype(get(point_map, *std::begin(points)))>;
+  // (lazily exact coordinates are read on one thread: reading them may update shared state)
+  if constexpr(runs_in_parallel<ConcurrencyTag>() && has_random_access<PointRange>() &&
+               std::is_same<std::decay_t<decltype(std::declval<const Point&>().x())>, double>::value) {
+    const auto first = std::begin(points);
+    const std::size_t n = static_cast<std::size_t>(std::distance(first, std::end(points)));
+    const std::size_t bad = first_index_where<ConcurrencyTag>(n, [&](std::size_t k) {
+      const auto& q = get(point_map, *(first + static_cast<std::ptrdiff_t>(k)));
+      return !(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()));
+    });
+    if(bad != n) throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
+    return;
+  }
   std::size_t i = 0;
   for(const auto& p : points) {
     const auto& q = get(point_map, p);
@@ -150,11 +201,11 @@ void check_finite_points(const PointRange& points, const PointMap& point_map)
 
 /// throws `Invalid_input` as `check_triangle_soup()` and `check_finite_points()` do: the one
 /// validation of an indexed soup (`faces` over the points of `points` read through `point_map`).
-template <class PointRange, class PointMap, class FaceRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class PointMap, class FaceRange>
 void check_indexed_soup(const PointRange& points, const PointMap& point_map, const FaceRange& faces)
 {
-  check_triangle_soup(faces, static_cast<std::size_t>(std::distance(std::begin(points), std::end(points))));
-  check_finite_points(points, point_map);
+  check_triangle_soup<ConcurrencyTag>(faces, static_cast<std::size_t>(std::distance(std::begin(points), std::end(points))));
+  check_finite_points<ConcurrencyTag>(points, point_map);
 }
 
 } // namespace internal
