@@ -375,6 +375,7 @@ public:
       std::merge(kept.begin(), kept.end(), moved.begin(), moved.end(), std::back_inserter(merge_buffer_));
       assign_list(original, merge_buffer_);
     }
+    keep_capacities();
     vertex_size_[duplicate] = 0;
     // Only the edges {original, w} gain triangles; the edges opposite the moved vertex keep theirs.
     std::sort(ends.begin(), ends.end());
@@ -543,13 +544,12 @@ private:
     const std::size_t nv = number_of_points;
     vertex_begin_.assign(nv, 0);
     vertex_size_.assign(nv, 0);
-    vertex_capacity_.assign(nv, 0);
+    std::vector<size_type>().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
     for(const Triangle& tr : triangles_)
       for(size_type v : tr) ++vertex_size_[v];
     std::size_t offset = 0;
     for(std::size_t v = 0; v < nv; ++v) {
       vertex_begin_[v] = offset;
-      vertex_capacity_[v] = vertex_size_[v];
       offset += vertex_size_[v];
       vertex_size_[v] = 0;
     }
@@ -570,7 +570,7 @@ private:
     const std::size_t nv = number_of_points, m = triangles_.size();
     vertex_begin_.assign(nv, 0);
     vertex_size_.assign(nv, 0);
-    vertex_capacity_.assign(nv, 0);
+    std::vector<size_type>().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
     {
       const std::unique_ptr<std::atomic<size_type>[]> cursor(new std::atomic<size_type>[nv]);
       internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
@@ -582,7 +582,6 @@ private:
         const size_type d = cursor[v].load(std::memory_order_relaxed);
         vertex_begin_[v] = offset;
         vertex_size_[v] = d;
-        vertex_capacity_[v] = d;
         cursor[v].store(0, std::memory_order_relaxed);
         offset += d;
       }
@@ -662,10 +661,18 @@ private:
     if(!group_.empty()) set_group(group_.data(), group_.data() + group_.size());
   }
 
+  // A build leaves every list exactly full, so the room of the lists is not stored then (4 bytes
+  // per vertex): it is made equal to the sizes before the first local update changes a size.
+  void keep_capacities()
+  {
+    if(vertex_capacity_.size() != vertex_size_.size()) vertex_capacity_ = vertex_size_;
+  }
+
   // Gives the list of v room for at least `capacity` entries; a list that outgrows its room moves
   // to the end of the pool with twice the room (amortised constant time per insertion).
   void reserve_list(size_type v, std::size_t capacity)
   {
+    keep_capacities();
     if(capacity <= vertex_capacity_[v]) return;
     capacity = std::max<std::size_t>(capacity, std::max<std::size_t>(2 * std::size_t(vertex_capacity_[v]), 4));
     const std::size_t old_begin = vertex_begin_[v], new_begin = ids_.size();
@@ -680,6 +687,7 @@ private:
   // Stores `list` (sorted) as the triangle list of v.
   void assign_list(size_type v, const std::vector<size_type>& list)
   {
+    keep_capacities();
     if(list.size() > vertex_capacity_[v]) {
       vertex_size_[v] = 0; // the old entries are overwritten: nothing to move
       reserve_list(v, 2 * list.size());
@@ -710,6 +718,7 @@ private:
   // Removes t from the sorted list of v.
   void remove_from_list(size_type v, size_type t)
   {
+    keep_capacities();
     size_type* b = ids_.data() + vertex_begin_[v];
     size_type* e = b + vertex_size_[v];
     size_type* p = std::lower_bound(b, e, t);
@@ -723,7 +732,7 @@ private:
   // the end of `ids_` (amortised constant time per insertion).
   std::vector<std::size_t> vertex_begin_;
   std::vector<size_type> vertex_size_;
-  std::vector<size_type> vertex_capacity_;
+  std::vector<size_type> vertex_capacity_; // empty while every list is full (after a build)
   std::vector<size_type> ids_;
   // Edge table: neighbors_[3 t + i] is the neighbour of t across its edge i.
   std::vector<size_type> neighbors_;
