@@ -1243,6 +1243,12 @@ private:
   {
     using Tag = std::conditional_t<double_coordinates && internal::runs_in_parallel<ConcurrencyTag>(), ConcurrencyTag,
                                    CGAL::Sequential_tag>;
+    if constexpr(internal::runs_in_parallel<Tag>())
+    {
+      // the parallel sort makes more passes: on one thread, the sequential build (the same tree)
+      if(!internal::runs_on_several_threads<Tag>())
+        return build<CGAL::Sequential_tag>(range, pm, capacity, depth);
+    }
     check_build_parameters(capacity, depth);
     capacity_ = capacity;
     depth_ = static_cast<unsigned>(depth);

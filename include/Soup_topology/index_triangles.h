@@ -64,6 +64,8 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
   if constexpr(!runs_in_parallel<ConcurrencyTag>() || !std::is_same<FT, double>::value) {
     return first_equal_points(n, point);
   } else {
+    // The partitions cost a pass of their own: on one thread, the sequential weld.
+    if(!runs_on_several_threads<ConcurrencyTag>()) return first_equal_points(n, point);
     std::vector<std::uint32_t> first_of(n);
     if(n == 0) return first_of;
     {

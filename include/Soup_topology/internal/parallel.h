@@ -12,9 +12,8 @@
 #include <CGAL/tags.h>
 
 #if defined(CGAL_LINKED_WITH_TBB)
-#if defined(__SANITIZE_THREAD__)
 #include <tbb/global_control.h>
-
+#if defined(__SANITIZE_THREAD__)
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -96,6 +95,20 @@ void run_blocks_on_standard_threads(std::size_t blocks, const Run& run)
   if(failure) std::rethrow_exception(failure);
 }
 #endif
+
+/// `true` if `ConcurrencyTag` runs in parallel and TBB allows more than one thread (its
+/// `max_allowed_parallelism`, which `--threads` and a caller's `tbb::global_control` set). Some
+/// parallel algorithms do more work in all than their sequential versions, which give the same
+/// result: on one thread the caller takes the sequential one.
+template <class ConcurrencyTag>
+bool runs_on_several_threads()
+{
+#if defined(CGAL_LINKED_WITH_TBB)
+  if constexpr(runs_in_parallel<ConcurrencyTag>())
+    return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
+#endif
+  return false;
+}
 
 /// calls `f(block, begin, end)` for every block `[begin, end)` of `block_size` elements of
 /// `[0, n)` (the last one shorter), in parallel when `ConcurrencyTag` asks for it. The blocks do
