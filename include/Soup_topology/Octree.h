@@ -1269,29 +1269,32 @@ private:
     throw Invalid_input("Soup_topology::Octree: point " + std::to_string(i) + " has a non-finite coordinate");
   }
 
-  // step 1 by blocks (`double` coordinates): the first non-finite point, then the box of each
-  // block, put together in block order with the comparisons of `approximate_points()` (the first
-  // of equal extreme coordinates is kept, so even the sign of a zero is the sequential one)
+  // step 1 by blocks (`double` coordinates), in one pass: each block's box, or its first
+  // non-finite point; the first bad point of all is named, else the boxes are put together in
+  // block order with the comparisons of `approximate_points()` (the first of equal extreme
+  // coordinates is kept, so even the sign of a zero is the sequential one)
   template <typename Tag, typename PointRange>
   Approximate_box box_in_parallel(const PointRange& range, const PointMap& pm, std::size_t n) const
   {
     const auto first = std::begin(range);
-    auto coordinates = [&](std::size_t i) {
-      const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
-      return std::array<double, 3>{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-    };
-    const std::size_t bad = internal::first_index_where<Tag>(n, [&](std::size_t i) {
-      const std::array<double, 3> c = coordinates(i);
-      return !(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]));
-    });
-    if(bad != n)
-      throw_non_finite_point(bad);
     std::vector<Approximate_box> boxes(internal::number_of_blocks(n));
+    std::vector<std::size_t> bad(boxes.size(), n);
     internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      Approximate_box& box = boxes[b];
       for(std::size_t i = begin; i != end; ++i)
-        extend(box, coordinates(i), i == begin);
+      {
+        const auto& p = get(pm, *(first + static_cast<std::ptrdiff_t>(i)));
+        const std::array<double, 3> c{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+        if(!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2])))
+        {
+          bad[b] = i;
+          return;
+        }
+        extend(boxes[b], c, i == begin);
+      }
     });
+    for(const std::size_t i : bad)
+      if(i != n)
+        throw_non_finite_point(i);
     Approximate_box box;
     for(std::size_t b = 0; b < boxes.size(); ++b)
     {

@@ -50,6 +50,12 @@ constexpr bool runs_in_parallel_on_points()
          std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
 }
 
+/// `ConcurrencyTag` where points of type `Point` are read and welded in parallel (see
+/// `runs_in_parallel_on_points()`), `CGAL::Sequential_tag` otherwise.
+template <class ConcurrencyTag, class Point>
+using Point_concurrency =
+  std::conditional_t<runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag, CGAL::Sequential_tag>;
+
 /// `first_equal_points(n, point)`, the same result computed in parallel when `ConcurrencyTag`
 /// asks for it. Coordinates stored as `double`: the points are cut into 256 partitions by their
 /// hash (equal points share a partition), each partition keeps its points in increasing index
@@ -281,8 +287,7 @@ template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class F
 std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, FaceRange& faces)
 {
   using Point = typename PointRange::value_type;
-  using Tag = std::conditional_t<runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
-                                 CGAL::Sequential_tag>;
+  using Tag = Point_concurrency<ConcurrencyTag, Point>;
   const std::size_t n = points.size();
   std::size_t face_id = 0;
   for(const auto& f : faces) {

@@ -191,12 +191,6 @@ void check_finite_facets(std::size_t count, const CornerAccess& corner_point, co
     throw Invalid_input(name + ": facet " + std::to_string(bad / 3) + " has a non-finite coordinate");
 }
 
-/// `ConcurrencyTag` where the points of type `Point` are read and welded in parallel (`double`
-/// coordinates), `CGAL::Sequential_tag` otherwise.
-template <class ConcurrencyTag, class Point>
-using Point_concurrency =
-  std::conditional_t<Soup_topology::internal::runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
-                     CGAL::Sequential_tag>;
 
 /// reads an STL file into `pts` and `tris`, exactly welded. A binary file is welded while it is
 /// decoded: its corners are read from the bytes where they are, never copied into triangles.
@@ -211,13 +205,13 @@ void read_STL_soup(const char* data, std::size_t size, const std::string& name, 
   if(looks_like_ascii_stl(data + bom, data + size)) {
     std::vector<std::array<Point, 3>> explicit_triangles;
     read_STL_triangles(data, size, explicit_triangles, name);
-    check_finite_facets<Point_concurrency<ConcurrencyTag, Point>>(
+    check_finite_facets<Soup_topology::internal::Point_concurrency<ConcurrencyTag, Point>>(
       explicit_triangles.size(), [&](std::size_t i) -> const Point& { return explicit_triangles[i / 3][i % 3]; }, name);
     ir = index_triangles<ConcurrencyTag>(explicit_triangles, pts, tris);
   } else {
     const std::size_t count = binary_STL_facet_count(data, size, name);
     const auto corner_point = [data](std::size_t i) { return binary_STL_corner<Point>(data, i); };
-    using Tag = Point_concurrency<ConcurrencyTag, Point>;
+    using Tag = Soup_topology::internal::Point_concurrency<ConcurrencyTag, Point>;
     check_finite_facets<Tag>(count, corner_point, name);
     ir.input_triangles = count;
     ir.input_corners = 3 * count;
