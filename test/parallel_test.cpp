@@ -12,11 +12,13 @@
 #include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/IO/STL.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/loop_subdivision.h>
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/snap_vertices.h>
+#include <Soup_topology/soup_statistics.h>
 #include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/internal/snap_vertices_worker.h>
 #include <Soup_topology/internal/tolerance_graph.h>
@@ -233,6 +235,61 @@ TEST_P(ParallelRealMesh, AdjacencyTables)
   shuffle_triangles(m.triangles, 7);
   const ST::Adjacency_tables shuffled(m.triangles, m.points.size());
   for_each_thread_count([&](int) { expect_same_tables(ST::Adjacency_tables(m.triangles, m.points.size(), Parallel()), shuffled); });
+}
+
+// The global queries of the tables and the statistics, on the mesh, its exploded soup (one
+// component per triangle) and the mesh with repeated, reversed and fanned triangles added
+// (non-manifold edges and vertices, inconsistent orientations): the same lists, counts and ids
+// on any number of threads. The exploded soups of the larger meshes span many blocks.
+void expect_same_global_queries(const std::vector<Point>& points, const std::vector<Triangle>& triangles)
+{
+  const ST::Adjacency_tables tables(triangles, points.size());
+  std::vector<ST::Adjacency_tables::size_type> component;
+  const std::size_t components = tables.number_of_connected_components(&component);
+  const auto non_manifold = tables.non_manifold_vertices();
+  const auto inconsistent = tables.inconsistently_oriented_edges();
+  const ST::Soup_statistics statistics = ST::compute_statistics(points, tables);
+  EXPECT_EQ(statistics.components, components);
+  for_each_thread_count([&](int) {
+    std::vector<ST::Adjacency_tables::size_type> c;
+    EXPECT_EQ(tables.number_of_connected_components<Parallel>(&c), components);
+    EXPECT_EQ(c, component);
+    EXPECT_EQ(tables.number_of_connected_components<Parallel>(), components);
+    EXPECT_EQ(tables.non_manifold_vertices<Parallel>(), non_manifold);
+    EXPECT_EQ(tables.inconsistently_oriented_edges<Parallel>(), inconsistent);
+    const ST::Soup_statistics s = ST::compute_statistics<Parallel>(points, tables);
+    EXPECT_EQ(std::make_tuple(s.vertices, s.triangles, s.border_edges, s.non_manifold_edges, s.non_manifold_vertices,
+                              s.inconsistent_edges, s.components, s.zero_area_triangles, s.closed),
+              std::make_tuple(statistics.vertices, statistics.triangles, statistics.border_edges,
+                              statistics.non_manifold_edges, statistics.non_manifold_vertices,
+                              statistics.inconsistent_edges, statistics.components, statistics.zero_area_triangles,
+                              statistics.closed));
+  });
+}
+
+TEST_P(ParallelRealMesh, GlobalQueriesOfTheTables)
+{
+  Mesh_data m = load(GetParam());
+  expect_same_global_queries(m.points, m.triangles);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(const auto& corners : soup_test::explode(m.points, m.triangles)) {
+    points.insert(points.end(), corners.begin(), corners.end());
+    triangles.push_back({points.size() - 3, points.size() - 2, points.size() - 1});
+  }
+  expect_same_global_queries(points, triangles);
+  // every 7th triangle repeated reversed, every 11th fanned by a triangle to a new point
+  const std::size_t n = m.triangles.size();
+  for(std::size_t t = 0; t < n; ++t) {
+    const Triangle tr = m.triangles[t];
+    if(t % 7 == 0) m.triangles.push_back({tr[0], tr[2], tr[1]});
+    if(t % 11 == 0) {
+      m.points.push_back(Point(m.points[tr[0]].x() + 1, m.points[tr[0]].y(), m.points[tr[0]].z()));
+      m.triangles.push_back({tr[0], tr[1], m.points.size() - 1});
+    }
+  }
+  shuffle_triangles(m.triangles, 11);
+  expect_same_global_queries(m.points, m.triangles);
 }
 
 TEST_P(ParallelRealMesh, OrientTriangleSoup)

@@ -284,7 +284,7 @@ int run_stats(const std::vector<std::string>& args)
   std::vector<Triangle> triangles;
   const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup<Concurrency>(file, points, triangles);
   const ST::Adjacency_tables tables(triangles, points.size(), Concurrency());
-  const ST::Soup_statistics s = ST::compute_statistics(points, tables);
+  const ST::Soup_statistics s = ST::compute_statistics<Concurrency>(points, tables);
 
   Report r;
   r.add_string("file", file);
@@ -613,7 +613,7 @@ int run_repair(const std::vector<std::string>& args)
   const ST::Orientation_report orientation =
     ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
   const ST::Soup_statistics s =
-    ST::compute_statistics(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
+    ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
   progress("oriented the soup");
   std::optional<std::size_t> intersecting;
   if(o.self_intersections) {

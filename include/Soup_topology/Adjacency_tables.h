@@ -9,6 +9,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/union_find.h>
 
 #include <CGAL/tags.h>
 
@@ -254,16 +255,27 @@ public:
   }
   /// the edges whose two triangles traverse them in the same direction (inconsistent
   /// orientation), one `Edge` per edge, the one of the smaller triangle.
+  /// \tparam ConcurrencyTag with `CGAL::Parallel_tag`, the triangles are examined by blocks on
+  ///         TBB's threads; the list is the same, in the order of the triangles
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   std::vector<Edge> inconsistently_oriented_edges() const
   {
-    std::vector<Edge> result;
-    for(size_type t = 0; t < triangles_.size(); ++t)
-      for(int i = 0; i < 3; ++i) {
-        const size_type u = neighbor(t, i);
-        if(u >= non_manifold_edge || u < t) continue;
-        const int j = edge_index(u, vertex(t, i), vertex(t, (i + 1) % 3));
-        if(vertex(u, j) == vertex(t, i)) result.push_back(Edge{t, i});
+    const std::size_t n = triangles_.size();
+    std::vector<std::vector<Edge>> blocks(internal::number_of_blocks(n));
+    internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                             [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t k = begin; k < end; ++k) {
+        const auto t = static_cast<size_type>(k);
+        for(int i = 0; i < 3; ++i) {
+          const size_type u = neighbor(t, i);
+          if(u >= non_manifold_edge || u < t) continue;
+          const int j = edge_index(u, vertex(t, i), vertex(t, (i + 1) % 3));
+          if(vertex(u, j) == vertex(t, i)) blocks[g].push_back(Edge{t, i});
+        }
       }
+    });
+    std::vector<Edge> result;
+    internal::concatenate_in_block_order(blocks, result);
     return result;
   }
   /// @}
@@ -277,11 +289,22 @@ public:
   /// `v` are grouped by the manifold edges incident to `v`; more than one group makes `v`
   /// non-manifold. (A vertex of a non-manifold edge is therefore non-manifold too.) Isolated
   /// vertices are not listed.
+  /// \tparam ConcurrencyTag with `CGAL::Parallel_tag`, the vertices are examined by blocks on
+  ///         TBB's threads; the list is the same, in increasing order
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   std::vector<size_type> non_manifold_vertices() const
   {
+    const std::size_t n = number_of_vertices();
+    std::vector<std::vector<size_type>> blocks(internal::number_of_blocks(n));
+    internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                             [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i < end; ++i) {
+        const auto v = static_cast<size_type>(i);
+        if(degree(v) > 1 && fan_size(v) != degree(v)) blocks[g].push_back(v);
+      }
+    });
     std::vector<size_type> result;
-    for(size_type v = 0; v < number_of_vertices(); ++v)
-      if(degree(v) > 1 && fan_size(v) != degree(v)) result.push_back(v);
+    internal::concatenate_in_block_order(blocks, result);
     return result;
   }
 
@@ -289,46 +312,64 @@ public:
   /// or not, are connected). If `component` is not null it receives, for every triangle, the id
   /// of its component; ids are numbered by their smallest triangle, from 0.
   /// Linear time (union-find; the triangles of a non-manifold edge are joined to its smallest one).
+  /// \tparam ConcurrencyTag with `CGAL::Parallel_tag`, the triangles are joined across their
+  ///         manifold edges by blocks on TBB's threads, the sets keeping their smallest triangle as
+  ///         root whatever the order of the unions, and the ids are numbered by blocks: the same
+  ///         count and ids
   /// \param component null, or the vector that receives the component of every triangle
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
   std::size_t number_of_connected_components(std::vector<size_type>* component = nullptr) const
   {
     const std::size_t n = triangles_.size();
-    std::vector<size_type> parent(n);
-    std::iota(parent.begin(), parent.end(), size_type(0));
-    auto find = [&](size_type x) {
-      size_type root = x;
-      while(parent[root] != root) root = parent[root];
-      while(parent[x] != root) { const size_type next = parent[x]; parent[x] = root; x = next; }
-      return root;
-    };
-    // The root of a set is its smallest triangle (with path compression the trees stay shallow).
-    auto unite = [&](size_type x, size_type y) {
-      x = find(x);
-      y = find(y);
-      if(x < y) parent[y] = x;
-      else if(y < x) parent[x] = y;
-    };
-    bool non_manifold = false;
-    for(size_type t = 0; t < n; ++t)
-      for(int i = 0; i < 3; ++i) {
-        const size_type u = neighbor(t, i);
-        if(u == non_manifold_edge) non_manifold = true;
-        else if(u != border_edge && u > t) unite(t, u);
-      }
-    if(non_manifold)
-      for_each_edge([&](size_type, size_type, const Edge* first, const Edge* last) {
-        if(last - first < 3) return;
-        for(const Edge* e = first + 1; e != last; ++e) unite(first->triangle, e->triangle);
+    // Whether an edge is non-manifold (its triangles are then joined in one more pass).
+    std::atomic<bool> non_manifold(false);
+    std::vector<size_type> root;
+    if(internal::runs_on_several_threads<ConcurrencyTag>()) {
+      internal::Concurrent_union_find sets(n);
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i < end; ++i)
+          join_across_manifold_edges(static_cast<size_type>(i), sets, non_manifold);
       });
-    // Ids in the order of the smallest triangle of each component.
-    std::vector<size_type> cc(n, border_edge);
-    size_type count = 0;
-    for(size_type t = 0; t < n; ++t) {
-      const size_type root = find(t);
-      if(cc[root] == border_edge) cc[root] = count++;
-      cc[t] = cc[root];
+      if(non_manifold) join_around_non_manifold_edges(sets);
+      root.resize(n);
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t t = begin; t < end; ++t) root[t] = sets.find(static_cast<size_type>(t));
+      });
     }
-    if(component != nullptr) component->swap(cc);
+    else {
+      internal::Union_find sets(n);
+      for(size_type t = 0; t < n; ++t) join_across_manifold_edges(t, sets, non_manifold);
+      if(non_manifold) join_around_non_manifold_edges(sets);
+      root = sets.take_roots();
+    }
+    // Ids in the order of the smallest triangle of each component (the root of its set): the
+    // roots of a block are numbered after those of the blocks before it.
+    const std::size_t blocks = internal::number_of_blocks(n);
+    std::vector<size_type> roots_before(blocks + 1, 0);
+    internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                             [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t < end; ++t) roots_before[g + 1] += root[t] == t ? 1 : 0;
+    });
+    for(std::size_t g = 0; g < blocks; ++g) roots_before[g + 1] += roots_before[g];
+    const std::size_t count = roots_before[blocks];
+    if(component != nullptr) {
+      std::vector<size_type> cc(n);
+      // first the ids of the roots, then every triangle takes its root's (a root precedes its set)
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t g, std::size_t begin, std::size_t end) {
+        size_type next = roots_before[g];
+        for(std::size_t t = begin; t < end; ++t)
+          if(root[t] == t) cc[t] = next++;
+      });
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t t = begin; t < end; ++t)
+          if(root[t] != t) cc[t] = cc[root[t]];
+      });
+      component->swap(cc);
+    }
     return count;
   }
   /// @}
@@ -436,6 +477,27 @@ public:
   /// @}
 
 private:
+  // unites `t` with its neighbours of larger index across its manifold edges; notes a non-manifold edge
+  template <class Sets>
+  void join_across_manifold_edges(size_type t, Sets& sets, std::atomic<bool>& non_manifold) const
+  {
+    for(int i = 0; i < 3; ++i) {
+      const size_type u = neighbor(t, i);
+      if(u == non_manifold_edge) non_manifold.store(true, std::memory_order_relaxed);
+      else if(u != border_edge && u > t) sets.unite(t, u);
+    }
+  }
+
+  // unites the triangles of every non-manifold edge
+  template <class Sets>
+  void join_around_non_manifold_edges(Sets& sets) const
+  {
+    for_each_edge([&](size_type, size_type, const Edge* first, const Edge* last) {
+      if(last - first < 3) return;
+      for(const Edge* e = first + 1; e != last; ++e) sets.unite(first->triangle, e->triangle);
+    });
+  }
+
   // The number of triangles reached from the first triangle of v by crossing manifold edges
   // incident to v, in both directions (the fan of that triangle). Equal to degree(v) exactly when
   // the triangles of v form one fan.

@@ -320,7 +320,7 @@ public:
     tables_.emplace(triangles_, pts_.size(), ConcurrencyTag());
     report_.border_edges_before = tables_->number_of_border_edges();
     report_.non_manifold_edges_before = tables_->non_manifold_edges().size();
-    report_.components_before = tables_->number_of_connected_components();
+    report_.components_before = tables_->template number_of_connected_components<ConcurrencyTag>();
   }
 
   /// welds (`snap_vertices()`) and splits T-junctions (`split_t_junctions()`) in rounds, until a
@@ -406,8 +406,8 @@ public:
   {
     report_.border_edges_after = tables_->number_of_border_edges();
     report_.non_manifold_edges_after = tables_->non_manifold_edges().size();
-    report_.non_manifold_vertices_after = tables_->non_manifold_vertices().size();
-    report_.components = tables_->number_of_connected_components();
+    report_.non_manifold_vertices_after = tables_->template non_manifold_vertices<ConcurrencyTag>().size();
+    report_.components = tables_->template number_of_connected_components<ConcurrencyTag>();
     const typename Geom_traits::Collinear_3 collinear = gt_.collinear_3_object();
     for(const Adjacency_tables::Triangle& t : tables_->triangles())
       if(collinear(pts_[t[0]], pts_[t[1]], pts_[t[2]])) ++report_.degenerate_triangles_after;

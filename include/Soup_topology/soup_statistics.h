@@ -12,6 +12,7 @@
 #include <CGAL/Named_function_parameters.h>
 
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace Soup_topology {
@@ -36,6 +37,9 @@ struct Soup_statistics
 ///
 /// Linear time in the size of the soup, however many triangles share an edge or a vertex: every
 /// count is one pass over the tables (see `Adjacency_tables`).
+/// \tparam ConcurrencyTag with `CGAL::Parallel_tag`, the vertex, orientation and component
+///         counts and the zero-area test run by blocks on TBB's threads (the test sequentially for
+///         coordinates that are not `double`); the statistics are the same
 /// \tparam PointRange a random-access container whose points are read through `point_map`
 /// \param points the points of the soup
 /// \param tables the adjacency tables of the triangles of the soup, over `points`
@@ -51,26 +55,39 @@ struct Soup_statistics
 ///     Epick and Epeck)}
 ///     \cgalParamType{a model of `SoupTopologyTraits`} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
 /// \cgalNamedParamsEnd
-template <class PointRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 Soup_statistics compute_statistics(const PointRange& points, const Adjacency_tables& tables,
                                    const NamedParameters& np = CGAL::parameters::default_values())
 {
   using NP_helper = internal::Soup_np_helper<PointRange, NamedParameters>;
   using Geom_traits = typename NP_helper::Geom_traits;
+  // The predicates of points whose coordinates are not `double` (lazily exact numbers) run on
+  // one thread (`Parallel.md`, rule 6).
+  using Geometric_tag =
+    std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
   const Geom_traits gt = NP_helper::get_geom_traits(np);
   const typename NP_helper::Point_map pm = NP_helper::get_point_map(np);
-  typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
   Soup_statistics s;
   s.vertices = points.size();
   s.triangles = tables.number_of_triangles();
   s.border_edges = tables.number_of_border_edges();
   s.non_manifold_edges = tables.non_manifold_edges().size();
-  s.non_manifold_vertices = tables.non_manifold_vertices().size();
-  s.inconsistent_edges = tables.inconsistently_oriented_edges().size();
-  s.components = tables.number_of_connected_components();
+  s.non_manifold_vertices = tables.template non_manifold_vertices<ConcurrencyTag>().size();
+  s.inconsistent_edges = tables.template inconsistently_oriented_edges<ConcurrencyTag>().size();
+  s.components = tables.template number_of_connected_components<ConcurrencyTag>();
   s.closed = s.border_edges == 0;
-  for(const Adjacency_tables::Triangle& t : tables.triangles())
-    if(collinear(get(pm, points[t[0]]), get(pm, points[t[1]]), get(pm, points[t[2]]))) ++s.zero_area_triangles;
+  const std::size_t n = tables.number_of_triangles();
+  std::vector<std::size_t> zero_area(internal::number_of_blocks(n), 0);
+  internal::for_each_block<Geometric_tag>(n, internal::default_block_size,
+                                          [&](std::size_t g, std::size_t begin, std::size_t end) {
+    typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
+    for(std::size_t i = begin; i < end; ++i) {
+      const Adjacency_tables::Triangle& t = tables.triangle(static_cast<Adjacency_tables::size_type>(i));
+      if(collinear(get(pm, points[t[0]]), get(pm, points[t[1]]), get(pm, points[t[2]]))) ++zero_area[g];
+    }
+  });
+  for(std::size_t z : zero_area) s.zero_area_triangles += z;
   return s;
 }
 

@@ -1,0 +1,109 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Union-find over 32-bit ids whose sets keep their smallest element as root, so that the sets
+// and their roots do not depend on the order of the unions: sequential, and for several threads
+// at once. The weld's tolerance graph and the components of the adjacency tables use them.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
+#define SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// union-find over 32-bit ids; the root of a set is its smallest id, so the sets (and their
+/// roots) do not depend on the order of the unions.
+class Union_find
+{
+public:
+  explicit Union_find(std::size_t n = 0) : parent_(n) { reset(n); }
+  void reset(std::size_t n)
+  {
+    parent_.resize(n);
+    for(std::size_t i = 0; i < n; ++i) parent_[i] = static_cast<std::uint32_t>(i);
+  }
+  std::uint32_t find(std::uint32_t x)
+  {
+    while(parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  /// `true` if `x` and `y` were in different sets.
+  bool unite(std::uint32_t x, std::uint32_t y)
+  {
+    const std::uint32_t a = find(x), b = find(y);
+    if(a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+  /// takes the sets of `parents`, a forest whose every parent is at most its child (so that the
+  /// root of a set is its smallest element, as `unite()` leaves it).
+  void assign(std::vector<std::uint32_t>&& parents) { parent_ = std::move(parents); }
+  /// the root of every element, `roots[x] == find(x)`, in the storage of the sets (left empty).
+  /// One pass in increasing order: a parent is smaller than its child, so it holds its root already.
+  std::vector<std::uint32_t> take_roots()
+  {
+    for(std::size_t x = 0; x < parent_.size(); ++x) parent_[x] = parent_[parent_[x]];
+    return std::move(parent_);
+  }
+
+private:
+  std::vector<std::uint32_t> parent_;
+};
+
+/// The sets of `Union_find`, united by several threads at once. A root is linked under the
+/// smaller root by a compare-and-swap that fails if it stopped being a root (then the union is
+/// tried again), and `find()` halves the path it walks: every parent stays at most its child, so
+/// whatever the order of the unions each set ends with its smallest element as root, as with
+/// `Union_find`, and `into()` gives the same sets with the same roots.
+class Concurrent_union_find
+{
+public:
+  explicit Concurrent_union_find(std::size_t n) : parent_(new std::atomic<std::uint32_t>[n]), size_(n)
+  {
+    for(std::size_t i = 0; i < n; ++i) parent_[i].store(static_cast<std::uint32_t>(i), std::memory_order_relaxed);
+  }
+  std::uint32_t find(std::uint32_t x)
+  {
+    for(;;) {
+      std::uint32_t p = parent_[x].load(std::memory_order_acquire);
+      if(p == x) return x;
+      const std::uint32_t g = parent_[p].load(std::memory_order_acquire);
+      if(g != p) parent_[x].compare_exchange_weak(p, g, std::memory_order_acq_rel, std::memory_order_acquire);
+      x = g;
+    }
+  }
+  void unite(std::uint32_t x, std::uint32_t y)
+  {
+    for(;;) {
+      std::uint32_t a = find(x), b = find(y);
+      if(a == b) return;
+      if(a < b) std::swap(a, b);
+      std::uint32_t expected = a;
+      if(parent_[a].compare_exchange_strong(expected, b, std::memory_order_acq_rel, std::memory_order_acquire)) return;
+    }
+  }
+  /// the sets, once every union has returned, into `uf` (each element linked to its root).
+  void into(Union_find& uf)
+  {
+    std::vector<std::uint32_t> parents(size_);
+    for(std::size_t i = 0; i < size_; ++i) parents[i] = find(static_cast<std::uint32_t>(i));
+    uf.assign(std::move(parents));
+  }
+
+private:
+  std::unique_ptr<std::atomic<std::uint32_t>[]> parent_;
+  std::size_t size_;
+};
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
