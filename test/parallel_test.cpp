@@ -43,6 +43,7 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -748,6 +749,60 @@ TEST(ParallelIndexTriangles, DuplicatesCollapsedTrianglesAndSignedZeros)
     } catch(const ST::Invalid_input& e) {
       EXPECT_EQ(std::string(e.what()), "triangle 150000, corner 2: non-finite coordinate");
     }
+  });
+}
+
+// The binary STL written on threads: the same bytes (several chunks of facets, with a repeated
+// and a degenerate triangle, which is not refused), and the same first refusal when float rounding would change the
+// soup (a point beyond the float range, a triangle that flips, each late in its range; the
+// point first). With Epeck points the records are made on one thread, the same bytes again.
+TEST(ParallelSTL, WriteTheSameBytesAndRefusals)
+{
+  Mesh_data m = load("clean/elephant.off");
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  ASSERT_GT(m.triangles.size(), std::size_t(1) << 16); // more than one chunk
+  m.triangles.push_back(m.triangles[5]);
+  for(int k = 0; k < 3; ++k) m.points.push_back(Point(20 + k, 20, 0)); // collinear: degenerate already
+  m.triangles.push_back({m.points.size() - 3, m.points.size() - 2, m.points.size() - 1});
+  const auto write = [](const auto& points, const auto& triangles, auto tag) {
+    std::ostringstream out(std::ios::binary);
+    ST::IO::write_triangle_soup<decltype(tag)>(out, "stl", points, triangles);
+    return out.str();
+  };
+  const std::string expected = write(m.points, m.triangles, CGAL::Sequential_tag());
+  ASSERT_EQ(expected.size(), 84 + 50 * m.triangles.size());
+  std::vector<Epeck::Point_3> exact;
+  for(const Point& p : m.points) exact.emplace_back(p.x(), p.y(), p.z());
+  const auto refusal = [](const std::vector<Point>& points, const std::vector<Triangle>& triangles, auto tag) {
+    try {
+      std::ostringstream out(std::ios::binary);
+      ST::IO::write_STL_triangle_soup<decltype(tag)>(out, points, triangles);
+    } catch(const ST::IO::Write_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("not refused");
+  };
+  // a triangle late in the range that becomes degenerate in float (its apex 1e-9 off the line of
+  // its base, at coordinates near 10), then also a point beyond the float range
+  std::vector<Point> degenerate = m.points;
+  std::vector<Triangle> with_sliver = m.triangles;
+  degenerate.push_back(Point(10, 10, 0));
+  degenerate.push_back(Point(11, 10, 0));
+  degenerate.push_back(Point(10.5, 10 + 1e-9, 0));
+  with_sliver.insert(with_sliver.end() - 1000, Triangle{degenerate.size() - 3, degenerate.size() - 2, degenerate.size() - 1});
+  std::vector<Point> beyond = degenerate;
+  beyond[m.points.size() - 10] = Point(1e39, 0, 0);
+  for_each_thread_count([&](int) {
+    EXPECT_EQ(write(m.points, m.triangles, Parallel()), expected);
+    EXPECT_EQ(write(exact, m.triangles, Parallel()), expected);
+    const std::string sliver = refusal(degenerate, with_sliver, Parallel());
+    EXPECT_EQ(sliver, refusal(degenerate, with_sliver, CGAL::Sequential_tag()));
+    EXPECT_NE(sliver.find("triangle " + std::to_string(with_sliver.size() - 1001) + " "), std::string::npos) << sliver;
+    EXPECT_NE(sliver.find("becomes degenerate in float"), std::string::npos) << sliver;
+    const std::string infinite = refusal(beyond, with_sliver, Parallel());
+    EXPECT_EQ(infinite, refusal(beyond, with_sliver, CGAL::Sequential_tag()));
+    EXPECT_NE(infinite.find("point " + std::to_string(m.points.size() - 10) + " "), std::string::npos) << infinite;
   });
 }
 

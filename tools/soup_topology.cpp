@@ -572,7 +572,7 @@ void write_repair_outputs(const Repair_options& o, const std::vector<Point>& poi
 {
   tool::Temporary_output mesh_file(o.out);
   try {
-    ST::IO::write_triangle_soup(mesh_file.stream(), o.out_format, points, triangles);
+    ST::IO::write_triangle_soup<Concurrency>(mesh_file.stream(), o.out_format, points, triangles);
   } catch(const ST::IO::Write_error& e) {
     throw tool::File_error(o.out + ": " + e.what());
   }

@@ -33,11 +33,14 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace Soup_topology {
@@ -51,6 +54,22 @@ std::array<double, 3> write_coordinates(const Point& p)
 {
   return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
 }
+
+// `x` rounded to the nearest float, as a double. Through a volatile float: GCC 12.2 at -O3
+// (x86-64) vectorizes the conversions of neighbouring coordinates to float and back into a plain
+// copy, which leaves them unrounded (seen when this check was first run by blocks).
+inline double rounded_to_float(double x)
+{
+  volatile float f = static_cast<float>(x);
+  return f;
+}
+
+// Whether the iterators of `Range` are random-access (the triangles can be checked and written
+// by blocks).
+template <class Range>
+using is_random_access_range = std::is_base_of<
+  std::random_access_iterator_tag,
+  typename std::iterator_traits<decltype(std::begin(std::declval<const Range&>()))>::iterator_category>;
 
 // Calls `f(a, b, c)` with the indices of every triangle, as `std::size_t`, in order; the soup
 // must have been checked (`check_triangle_soup()`).
@@ -203,6 +222,10 @@ void put_little_endian(std::string& out, T value)
 /// Only points used by a triangle are checked. Triangles already degenerate before rounding are
 /// not refused, since rounding did not make them so.
 ///
+/// \tparam ConcurrencyTag with `CGAL::Parallel_tag`, the points and the triangles (of a
+///         random-access range, with `double` coordinates) are checked by blocks on TBB's threads;
+///         the first refusal in the order of the points, then of the triangles, is the one thrown,
+///         as sequentially
 /// \tparam PointRange a random-access range of `Point_3`
 /// \tparam TriangleRange a range of faces of 3 indices
 /// \param points the points of the soup
@@ -216,7 +239,8 @@ void put_little_endian(std::string& out, T value)
 ///     \cgalParamDefault{the kernel of the point type}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 void check_STL_float_rounding(const PointRange& points, const TriangleRange& triangles,
                               const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -226,7 +250,12 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
   using Float_point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
   const Geom_traits gt =
     CGAL::parameters::choose_parameter<Geom_traits>(CGAL::parameters::get_parameter(np, CGAL::internal_np::geom_traits));
-  Soup_topology::internal::check_triangle_soup(triangles, points.size());
+  // Points other than `double` ones (lazily exact numbers) and ranges without random access
+  // are checked on one thread.
+  using Tag = std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value &&
+                                   internal::is_random_access_range<TriangleRange>::value,
+                                 ConcurrencyTag, CGAL::Sequential_tag>;
+  Soup_topology::internal::check_triangle_soup<Tag>(triangles, points.size());
   const std::string advice = "; STL stores coordinates as 32-bit floats: write .off, .obj or .ply to keep them as doubles";
   auto describe = [](const std::array<double, 3>& c) {
     internal::Text_line t;
@@ -241,21 +270,30 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
   std::vector<char> used(points.size(), 0);
   internal::for_each_triangle(triangles, [&](std::size_t a, std::size_t b, std::size_t c) { used[a] = used[b] = used[c] = 1; });
   std::vector<Float_point> rounded(points.size());
-  std::vector<std::size_t> order;
   const double float_max = static_cast<double>(std::numeric_limits<float>::max());
-  for(std::size_t i = 0; i < points.size(); ++i) {
-    if(!used[i]) continue;
-    const std::array<double, 3> c = internal::write_coordinates(points[i]);
-    std::array<double, 3> r;
-    for(std::size_t k = 0; k < 3; ++k) {
-      // Converting a double outside the float range is undefined behaviour: test first.
-      if(!std::isfinite(c[k]) || std::abs(c[k]) > float_max)
-        throw Write_error("point " + std::to_string(i) + " " + describe(c) + " becomes infinite in float" + advice);
-      r[k] = static_cast<double>(static_cast<float>(c[k]));
+  // Converting a double outside the float range is undefined behaviour: test first.
+  const auto beyond_float = [&](std::size_t i) {
+    if(!used[i]) return false;
+    for(double c : internal::write_coordinates(points[i]))
+      if(!std::isfinite(c) || std::abs(c) > float_max) return true;
+    return false;
+  };
+  const std::size_t first_beyond = Soup_topology::internal::first_index_where<Tag>(points.size(), beyond_float);
+  if(first_beyond < points.size())
+    throw Write_error("point " + std::to_string(first_beyond) + " " + describe(internal::write_coordinates(points[first_beyond])) +
+                      " becomes infinite in float" + advice);
+  Soup_topology::internal::for_each_block<Tag>(points.size(), Soup_topology::internal::default_block_size,
+                                               [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t i = begin; i < end; ++i) {
+      if(!used[i]) continue;
+      const std::array<double, 3> c = internal::write_coordinates(points[i]);
+      rounded[i] = Float_point(internal::rounded_to_float(c[0]), internal::rounded_to_float(c[1]),
+                               internal::rounded_to_float(c[2]));
     }
-    rounded[i] = Float_point(r[0], r[1], r[2]);
-    order.push_back(i);
-  }
+  });
+  std::vector<std::size_t> order;
+  for(std::size_t i = 0; i < points.size(); ++i)
+    if(used[i]) order.push_back(i);
   // Distinct points that become equal: a reader welds them, and the mesh read back changes.
   // Whether there is such a pair is found by hashing; only then are the points sorted, so that
   // the pair named is the first in lexicographic order whatever the hashing.
@@ -278,23 +316,42 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
     return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   };
   auto coordinates = [](const Float_point& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
-  const typename Geom_traits::Collinear_3 collinear = gt.collinear_3_object();
-  std::size_t t = 0;
-  internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
-    const std::size_t triangle = t++;
+  // What rounding does to triangle `triangle` (corners i, j, k): nothing (an empty string), or
+  // the refusal.
+  const auto refusal = [&](std::size_t triangle, std::size_t i, std::size_t j, std::size_t k) -> std::string {
     const Float_point &a = rounded[i], &b = rounded[j], &c = rounded[k];
-    const bool was_degenerate = collinear(points[i], points[j], points[k]);
-    if(was_degenerate) return;
+    const bool was_degenerate = gt.collinear_3_object()(points[i], points[j], points[k]);
+    if(was_degenerate) return {};
     const auto which = [&]() {
       return "triangle " + std::to_string(triangle) + " (points " + std::to_string(i) + ", " + std::to_string(j) + ", " +
              std::to_string(k) + ")";
     };
-    if(CGAL::collinear(a, b, c)) throw Write_error(which() + " becomes degenerate in float" + advice);
+    if(CGAL::collinear(a, b, c)) return which() + " becomes degenerate in float" + advice;
     const std::array<double, 3> n0 =
       normal(internal::write_coordinates(points[i]), internal::write_coordinates(points[j]), internal::write_coordinates(points[k]));
     const std::array<double, 3> n1 = normal(coordinates(a), coordinates(b), coordinates(c));
-    if(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0) throw Write_error(which() + " flips in float" + advice);
-  });
+    if(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0) return which() + " flips in float" + advice;
+    return {};
+  };
+  if constexpr(internal::is_random_access_range<TriangleRange>::value) {
+    const auto at = [&](std::size_t t) { return Soup_topology::internal::triangle_indices(std::begin(triangles)[t]); };
+    const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles)));
+    const std::size_t first = Soup_topology::internal::first_index_where<Tag>(n, [&](std::size_t t) {
+      const std::array<std::size_t, 3> v = at(t);
+      return !refusal(t, v[0], v[1], v[2]).empty();
+    });
+    if(first < n) {
+      const std::array<std::size_t, 3> v = at(first);
+      throw Write_error(refusal(first, v[0], v[1], v[2]));
+    }
+  }
+  else {
+    std::size_t t = 0;
+    internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
+      const std::string refused = refusal(t++, i, j, k);
+      if(!refused.empty()) throw Write_error(refused);
+    });
+  }
 }
 
 /// \ingroup PkgSoupTopologyIO
@@ -422,19 +479,24 @@ void write_PLY_triangle_soup(std::ostream& os, const PointRange& points, const T
 /// are welded again.
 ///
 /// The stream must be opened in binary mode.
+/// \tparam ConcurrencyTag with `CGAL::Parallel_tag` and a random-access range of triangles, the
+///         check and the records are made by blocks on TBB's threads (the bytes are the same)
 /// \throws Write_error as `check_STL_float_rounding()`, if there are more than 2^32 - 1
 /// triangles, or if the stream fails.
-template <class PointRange, class TriangleRange>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange>
 void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const TriangleRange& triangles)
 {
   const std::size_t number_of_triangles = static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles)));
   if(number_of_triangles > std::numeric_limits<std::uint32_t>::max())
     throw Write_error("binary STL counts facets on 32 bits: " + std::to_string(number_of_triangles) + " triangles are too many");
-  check_STL_float_rounding(points, triangles);
-  std::string data = "binary STL written by Soup_topology";
-  data.resize(80, ' ');
-  internal::put_little_endian(data, static_cast<std::uint32_t>(number_of_triangles));
-  internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
+  check_STL_float_rounding<ConcurrencyTag>(points, triangles);
+  std::string header = "binary STL written by Soup_topology";
+  header.resize(80, ' ');
+  internal::put_little_endian(header, static_cast<std::uint32_t>(number_of_triangles));
+  os.write(header.data(), static_cast<std::streamsize>(header.size()));
+  // The 50 bytes of the facet with corners i, j, k at `out`: its unit normal and its corners as
+  // floats, little-endian, then two zero bytes.
+  const auto facet = [&](std::size_t i, std::size_t j, std::size_t k, char* out) {
     const auto a = internal::write_coordinates(points[i]);
     const auto b = internal::write_coordinates(points[j]);
     const auto c = internal::write_coordinates(points[k]);
@@ -443,16 +505,48 @@ void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const T
     double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for(double& x : n) x = (length > 0 && std::isfinite(length)) ? x / length : 0.0;
-    for(double x : n) internal::put_little_endian(data, static_cast<float>(x));
+    const auto put = [&out](double x) {
+      const float f = static_cast<float>(x);
+      std::uint32_t bits;
+      std::memcpy(&bits, &f, 4);
+      for(int byte = 0; byte < 4; ++byte) *out++ = static_cast<char>((bits >> (8 * byte)) & 0xff);
+    };
+    for(double x : n) put(x);
     for(const auto* corner : {&a, &b, &c})
-      for(double x : *corner) internal::put_little_endian(data, static_cast<float>(x));
-    data.append(2, '\0');
-    if(data.size() > (1u << 16)) {
-      os.write(data.data(), static_cast<std::streamsize>(data.size()));
-      data.clear();
+      for(double x : *corner) put(x);
+    out[0] = out[1] = '\0';
+  };
+  // Written by chunks of facets, each made by blocks (in parallel with `Parallel_tag`, random
+  // access and `double` coordinates: lazily exact numbers are converted on one thread), then
+  // written in order.
+  using Point = typename std::iterator_traits<decltype(std::begin(points))>::value_type;
+  using Tag = std::conditional_t<std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value,
+                                 ConcurrencyTag, CGAL::Sequential_tag>;
+  constexpr std::size_t chunk = std::size_t(1) << 16;
+  std::vector<char> data(50 * std::min(chunk, number_of_triangles));
+  if constexpr(internal::is_random_access_range<TriangleRange>::value) {
+    for(std::size_t first = 0; first < number_of_triangles; first += chunk) {
+      const std::size_t count = std::min(chunk, number_of_triangles - first);
+      Soup_topology::internal::for_each_block<Tag>(count, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t f = begin; f < end; ++f) {
+          const std::array<std::size_t, 3> t = Soup_topology::internal::triangle_indices(std::begin(triangles)[first + f]);
+          facet(t[0], t[1], t[2], data.data() + 50 * f);
+        }
+      });
+      os.write(data.data(), static_cast<std::streamsize>(50 * count));
     }
-  });
-  os.write(data.data(), static_cast<std::streamsize>(data.size()));
+  }
+  else {
+    std::size_t f = 0;
+    internal::for_each_triangle(triangles, [&](std::size_t i, std::size_t j, std::size_t k) {
+      facet(i, j, k, data.data() + 50 * f);
+      if(++f == chunk) {
+        os.write(data.data(), static_cast<std::streamsize>(50 * f));
+        f = 0;
+      }
+    });
+    os.write(data.data(), static_cast<std::streamsize>(50 * f));
+  }
   os.flush();
   internal::check_stream(os);
 }
@@ -460,15 +554,18 @@ void write_STL_triangle_soup(std::ostream& os, const PointRange& points, const T
 /// \ingroup PkgSoupTopologyIO
 /// \brief writes the soup to `os` in `format` (`"off"`, `"obj"`, `"ply"` or `"stl"`, lower
 /// case), with the named parameters of the format's writer.
+/// \tparam ConcurrencyTag passed on to `write_STL_triangle_soup()` (the other writers run on one
+///         thread)
 /// \throws Write_error for an unknown format and as the format's writer.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 void write_triangle_soup(std::ostream& os, const std::string& format, const PointRange& points,
                          const TriangleRange& triangles, const NamedParameters& np = CGAL::parameters::default_values())
 {
   if(format == "off") write_OFF_triangle_soup(os, points, triangles, np);
   else if(format == "obj") write_OBJ_triangle_soup(os, points, triangles, np);
   else if(format == "ply") write_PLY_triangle_soup(os, points, triangles, np);
-  else if(format == "stl") write_STL_triangle_soup(os, points, triangles);
+  else if(format == "stl") write_STL_triangle_soup<ConcurrencyTag>(os, points, triangles);
   else throw Write_error("unknown output format '" + format + "' (expected off, obj, ply or stl)");
 }
 
@@ -483,7 +580,10 @@ void write_triangle_soup(std::ostream& os, const std::string& format, const Poin
 ///
 /// \throws Write_error naming `filename`: unknown extension, cannot be opened, failed write,
 /// STL float rounding; Invalid_input for a face that is not a triangle of in-range indices.
-template <class PointRange, class TriangleRange, class NamedParameters = CGAL::parameters::Default_named_parameters>
+/// \tparam ConcurrencyTag passed on to `write_STL_triangle_soup()` and its check (the other
+///         writers run on one thread)
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
 void write_triangle_soup(const std::string& filename, const PointRange& points, const TriangleRange& triangles,
                          const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -497,11 +597,11 @@ void write_triangle_soup(const std::string& filename, const PointRange& points, 
   try {
     if(format != "off" && format != "obj" && format != "ply" && format != "stl")
       throw Write_error("unknown output extension '" + format + "' (expected .off, .obj, .ply or .stl)");
-    if(format == "stl") check_STL_float_rounding(points, triangles);
+    if(format == "stl") check_STL_float_rounding<ConcurrencyTag>(points, triangles);
     else internal::check_finite_for_writing(points);
     std::ofstream os(filename, std::ios::binary | std::ios::trunc);
     if(!os) throw Write_error(std::string("cannot open the file for writing (") + std::strerror(errno) + ")");
-    write_triangle_soup(os, format, points, triangles, np);
+    write_triangle_soup<ConcurrencyTag>(os, format, points, triangles, np);
     os.close();
     if(!os) throw Write_error("the write failed");
   } catch(const Write_error& e) {
