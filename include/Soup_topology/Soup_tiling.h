@@ -102,6 +102,13 @@ public:
   std::size_t owned_triangles(std::size_t t) const { return owned_[t]; }
   /// the number of triangles of the soup the plan was made from
   std::size_t number_of_triangles() const { return triangles_; }
+  /// the mean length of the edges of the soup's triangles (0 without triangles)
+  double mean_edge_length() const { return mean_edge_length_; }
+  /// `true` if tile `t` holds every cell: its region is the whole cube, which holds the soup
+  bool holds_every_cell(std::size_t t) const
+  {
+    return first_cell_[t] == 0 && first_cell_[t + 1] == (std::uint64_t(1) << (3 * level_));
+  }
 
   /// the integer address of the cell holding coordinate `x` along `axis` (clamped to the cube)
   std::uint64_t cell_address(double x, std::size_t axis) const
@@ -163,6 +170,47 @@ public:
     return std::copy(tiles.begin(), tiles.end(), out);
   }
 
+  /// an upper bound on the distance from `p` to the cells of tile `t`: 0 if `p` lies in one of
+  /// them, otherwise the distance to the nearest aligned block of the tile's range, plus a margin
+  /// that covers the rounding of the cells' bounds. A point within `halo - distance_to_tile(p, t)`
+  /// of `p` is within `halo` of the tile's cells: that is the depth of `p` in the tile's region,
+  /// as the tiled repair reads it.
+  double distance_to_tile(const Point& p, std::size_t t) const
+  {
+    if(tile_of_cell(cell_of(p)) == t) return 0;
+    const double cell_side = side_ / std::ldexp(1.0, int(level_));
+    double best = std::numeric_limits<double>::infinity();
+    for(std::size_t b = block_begin_[t]; b != block_begin_[t + 1]; ++b) {
+      const std::uint64_t corner[3] = {internal::gather_every_third(blocks_[b].first >> 2),
+                                       internal::gather_every_third(blocks_[b].first >> 1),
+                                       internal::gather_every_third(blocks_[b].first)};
+      const double width = double(std::uint64_t(1) << blocks_[b].size_level);
+      double d2 = 0;
+      for(std::size_t i = 0; i < 3; ++i) {
+        const double lo = origin_[i] + double(corner[i]) * cell_side, hi = lo + width * cell_side;
+        const double d = p[i] < lo ? lo - p[i] : (p[i] > hi ? p[i] - hi : 0.0);
+        d2 += d * d;
+      }
+      best = std::min(best, d2);
+    }
+    return std::sqrt(best) * (1 + 1e-12) + 4 * margin_;
+  }
+
+  /// `true` if the triangle with corners `c` may meet the cells of tile `t` grown by `halo` (a
+  /// superset, as `tiles_meeting()`, for a halo other than the plan's).
+  bool may_meet_region(const Tile_corners& c, std::size_t t, double halo) const
+  {
+    std::array<std::uint64_t, 3> lo, hi;
+    for(std::size_t i = 0; i < 3; ++i) {
+      const double a = std::min({c[0][i], c[1][i], c[2][i]}), b = std::max({c[0][i], c[1][i], c[2][i]});
+      lo[i] = cell_address(a - (halo + margin_), i);
+      hi[i] = cell_address(b + (halo + margin_), i);
+    }
+    for(std::size_t b = block_begin_[t]; b != block_begin_[t + 1]; ++b)
+      if(block_meets(blocks_[b], lo, hi)) return true;
+    return false;
+  }
+
 private:
   template <class TriangleSource>
   friend Tile_plan plan_tiles(const TriangleSource& source, std::size_t number_of_tiles, double halo, unsigned level);
@@ -203,7 +251,7 @@ private:
   }
 
   Point origin_{{0, 0, 0}};
-  double side_ = 1, halo_ = 0, margin_ = 0;
+  double side_ = 1, halo_ = 0, margin_ = 0, mean_edge_length_ = 0;
   unsigned level_ = 1;
   std::size_t triangles_ = 0;
   std::vector<std::uint64_t> first_cell_;
@@ -323,7 +371,13 @@ Tile_plan plan_tiles(const TriangleSource& source, std::size_t number_of_tiles, 
   const double infinity = std::numeric_limits<double>::infinity();
   Tile_plan::Point lo{{infinity, infinity, infinity}}, hi{{-infinity, -infinity, -infinity}};
   std::size_t n = 0;
+  double edge_lengths = 0;
   source.for_each([&](const Tile_corners& c, std::uint64_t index) {
+    for(std::size_t k = 0; k < 3; ++k) {
+      const auto& p = c[k];
+      const auto& q = c[(k + 1) % 3];
+      edge_lengths += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
     for(const auto& p : c)
       for(std::size_t i = 0; i < 3; ++i) {
         if(!std::isfinite(p[i]))
@@ -334,6 +388,7 @@ Tile_plan plan_tiles(const TriangleSource& source, std::size_t number_of_tiles, 
     ++n;
   });
   plan.triangles_ = n;
+  plan.mean_edge_length_ = n > 0 && std::isfinite(edge_lengths) ? edge_lengths / double(3 * n) : 0;
   double extent = 0, largest = 0;
   for(std::size_t i = 0; i < 3 && n > 0; ++i) {
     extent = std::max(extent, hi[i] - lo[i]);

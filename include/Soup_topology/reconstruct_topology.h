@@ -231,6 +231,19 @@ void with_user_visitor(const NamedParameters& np, const Function& f)
   }
 }
 
+/// the observer of the phases of `Soup_reconstruction::weld_and_split_in_rounds()` that does nothing.
+struct No_phase_observer
+{
+  template <class Points>
+  void before_weld(const Points&, const Adjacency_tables&) {}
+  template <class Points>
+  void after_weld(const Points&, const Adjacency_tables&) {}
+  template <class Points>
+  void before_split(const Points&, const Adjacency_tables&) {}
+  template <class Points>
+  void after_split(const Points&, const Adjacency_tables&) {}
+};
+
 /// whether the soup given to the pipeline may still hold exactly equal points.
 enum class Exact_weld { TO_DO, DONE };
 
@@ -330,24 +343,29 @@ public:
   /// the triangles use strictly decreases; a triangle is removed only when two of its corners
   /// merge) or splits a triangle at a vertex already in the soup (no vertex is added, and a
   /// split vertex is no longer on that border edge); `max_rounds` bounds them in any case.
-  template <class User_visitor>
+  ///
+  /// `observer` (a `No_phase_observer` by default) is told before and after each phase, the weld
+  /// and the split of every round, with the points and the tables as they are then: the tiled
+  /// repair follows what each phase may have decided differently from the whole soup.
+  template <class User_visitor, class Phase_observer = No_phase_observer>
   void weld_and_split_in_rounds(const FT& eps, std::size_t max_rounds, bool do_split, Small_features policy,
-                                User_visitor& user_visitor)
+                                User_visitor& user_visitor, Phase_observer&& observer = Phase_observer())
   {
     report_.tolerance = CGAL::to_double(eps);
     report_.small_features = policy;
     // Per-vertex tolerances: the rounds read those of the pipeline's points, without copy.
     if(tolerances_.empty())
-      run_rounds(CGAL::parameters::snapping_tolerance(eps).geom_traits(gt_), max_rounds, do_split, policy, user_visitor);
+      run_rounds(CGAL::parameters::snapping_tolerance(eps).geom_traits(gt_), max_rounds, do_split, policy, user_visitor,
+                 observer);
     else
       run_rounds(parameters::vertex_tolerance_map(Vertex_tolerance_vector<FT>{&tolerances_}).geom_traits(gt_), max_rounds,
-                 do_split, policy, user_visitor);
+                 do_split, policy, user_visitor, observer);
   }
 
 private:
-  template <class WeldNamedParameters, class User_visitor>
+  template <class WeldNamedParameters, class User_visitor, class Phase_observer>
   void run_rounds(const WeldNamedParameters& weld_np, std::size_t max_rounds, bool do_split, Small_features policy,
-                  User_visitor& user_visitor)
+                  User_visitor& user_visitor, Phase_observer& observer)
   {
     merged_into_.resize(pts_.size());
     for(std::size_t i = 0; i < merged_into_.size(); ++i) merged_into_[i] = static_cast<std::uint32_t>(i);
@@ -358,6 +376,7 @@ private:
     std::vector<std::size_t> sites;
     for(std::size_t round = 0; round < max_rounds; ++round) {
       ++report_.rounds;
+      observer.before_weld(pts_, *tables_);
       const Snap_report s = snap_vertices<ConcurrencyTag>(
         pts_, triangles_, *tables_,
         parameters::small_features(policy, parameters::fixed_vertices(static_cast<const std::vector<char>*>(&holds_welds),
@@ -365,14 +384,17 @@ private:
       for(std::size_t v = 0; v < merged_into_.size(); ++v)
         if(merged_into_[v] != v) holds_welds[merged_into_[v]] = 1;
       add_weld_report(s, round);
+      observer.after_weld(pts_, *tables_);
       sites.insert(sites.end(), s.ambiguous_sites.begin(), s.ambiguous_sites.end());
       std::size_t splits = 0;
       if(do_split) {
+        observer.before_split(pts_, *tables_);
         if constexpr(is_split_visitor<User_visitor>::value)
           splits = add_split_report(
             split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np.visitor(std::ref(recorder))));
         else
           splits = add_split_report(split_t_junctions<ConcurrencyTag>(pts_, triangles_, *tables_, weld_np));
+        observer.after_split(pts_, *tables_);
       }
       if(s.merged_vertices == 0 && splits == 0) break;
     }
