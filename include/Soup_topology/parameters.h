@@ -98,6 +98,13 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(split_t_junctions_t, do_split_t_junctions)
 /// of the soup, instead of `snapping_tolerance` or `relative_tolerance`; a `bool` (default `false`).
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(automatic_tolerance_t, automatic_tolerance)
 
+// Tiled repair (`tiled_reconstruct_topology()`).
+
+/// the halo of the first repair of every tile, a `double` (default four times the tolerance plus
+/// four times the mean edge length of the soup): a tile whose owned triangles are tainted is
+/// repaired again with the halo doubled, so the halo changes the time, never the result.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(tile_halo_t, tile_halo)
+
 // Orientation (`orient_triangle_soup()`, `triangle_soup_to_face_graph()`).
 
 /// how closed patches are oriented, a `Soup_topology::Orientation_policy` (default

@@ -1,0 +1,297 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The repair of a soup cut into tiles (doc/Soup_topology/Tiled_repair_design.md): every tile is
+// repaired on its region with the in-memory pipeline, the taint of its points is followed phase
+// by phase, and only the triangles it owns, untainted, are kept; a tile with a tainted owned
+// triangle is repaired again on a larger region. The result is the in-memory result in a
+// canonical order.
+
+#ifndef SOUP_TOPOLOGY_TILED_RECONSTRUCT_TOPOLOGY_H
+#define SOUP_TOPOLOGY_TILED_RECONSTRUCT_TOPOLOGY_H
+
+#include <Soup_topology/Invalid_input.h>
+#include <Soup_topology/Soup_tiling.h>
+#include <Soup_topology/parameters.h>
+#include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/internal/tile_taint.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/tags.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Soup_topology {
+
+/// \ingroup PkgSoupTopologyTiling
+/// \brief what `tiled_reconstruct_topology()` did.
+struct Tiled_reconstruction_report
+{
+  double tolerance = 0;                  ///< the absolute tolerance
+  std::size_t input_triangles = 0;       ///< triangles of the source
+  std::size_t tiles = 0;                 ///< tiles of the plan
+  double first_halo = 0;                 ///< the halo of the first run of every tile
+  double largest_halo = 0;               ///< the largest halo a tile was repaired with
+  std::size_t tile_runs = 0;             ///< repairs of a tile's region, the repeated ones included
+  std::size_t repeated_tiles = 0;        ///< tiles repaired again on a larger region
+  std::size_t discarded_triangles = 0;   ///< owned triangles found tainted, in the runs discarded
+  std::size_t largest_tile_triangles = 0; ///< the most input triangles of one run (its memory)
+  std::size_t halo_triangles = 0;        ///< triangles spilled to the halo of a tile that does not own them
+  bool whole_soup = false;               ///< `true` if the soup was repaired as one tile (see `whole_soup_reason`)
+  std::string whole_soup_reason;         ///< why the soup was repaired as one tile
+  std::size_t output_points = 0;
+  std::size_t output_triangles = 0;
+};
+
+/// \ingroup PkgSoupTopologyTiling
+/// \brief the canonical order of a triangle soup given by the corners of its triangles: the
+/// points are the distinct corners in lexicographic order, every triangle starts at its smallest
+/// point index (its orientation kept), and the triangles are sorted. Two soups that are the same
+/// set of triangles on the same coordinates, however ordered, have the same canonical order.
+inline void canonical_triangle_soup(const std::vector<Tile_corners>& corners,
+                                    std::vector<CGAL::Epick::Point_3>& points,
+                                    std::vector<std::array<std::uint32_t, 3>>& triangles)
+{
+  std::vector<std::array<double, 3>> distinct;
+  distinct.reserve(3 * corners.size());
+  for(const Tile_corners& c : corners) distinct.insert(distinct.end(), c.begin(), c.end());
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  triangles.clear();
+  triangles.reserve(corners.size());
+  for(const Tile_corners& c : corners) {
+    std::array<std::uint32_t, 3> t;
+    for(std::size_t k = 0; k < 3; ++k)
+      t[k] = static_cast<std::uint32_t>(std::lower_bound(distinct.begin(), distinct.end(), c[k]) - distinct.begin());
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles.push_back(t);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  points.clear();
+  points.reserve(distinct.size());
+  for(const auto& p : distinct) points.emplace_back(p[0], p[1], p[2]);
+}
+
+/// \ingroup PkgSoupTopologyTiling
+/// \brief the canonical order (`canonical_triangle_soup()`) of an indexed soup.
+template <class PointRange, class TriangleRange>
+void canonical_triangle_soup(const PointRange& points_in, const TriangleRange& triangles_in,
+                             std::vector<CGAL::Epick::Point_3>& points, std::vector<std::array<std::uint32_t, 3>>& triangles)
+{
+  std::vector<Tile_corners> corners;
+  Soup_triangle_source<PointRange, TriangleRange>(points_in, triangles_in)
+    .for_each([&](const Tile_corners& c, std::uint64_t) { corners.push_back(c); });
+  canonical_triangle_soup(corners, points, triangles);
+}
+
+namespace internal {
+
+/// what one repair of a tile's region gives back.
+struct Tile_run
+{
+  std::vector<Tile_corners> owned;     // the owned triangles, untainted, by their output corners
+  std::size_t tainted_owned = 0;       // owned triangles with a tainted corner
+  bool degenerate_under_collapse = false; // a degenerate triangle under COLLAPSE: not tiled
+};
+
+/// repairs the region of tile `tile` given by the corners of its triangles, with the halo `halo`,
+/// and keeps the owned triangles and the count of the tainted ones. Under `COLLAPSE`, a region
+/// with a degenerate triangle is not repaired unless it is the whole soup (`whole_soup`).
+template <class ConcurrencyTag>
+Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_plan& plan, std::size_t tile, double halo,
+                            double tolerance, std::size_t max_rounds, bool do_split, Small_features policy,
+                            bool whole_soup = false)
+{
+  using Kernel = CGAL::Epick;
+  using Point = Kernel::Point_3;
+  using Triangles = std::vector<std::array<std::uint32_t, 3>>;
+  const Kernel kernel;
+  Tile_run run;
+  std::vector<Point> given, points;
+  Triangles triangles;
+  given.reserve(3 * region.size());
+  triangles.reserve(region.size());
+  for(const Tile_corners& c : region) {
+    const std::uint32_t first = static_cast<std::uint32_t>(given.size());
+    for(const auto& p : c) given.emplace_back(p[0], p[1], p[2]);
+    triangles.push_back({first, first + 1, first + 2});
+  }
+  std::vector<std::uint32_t> input_index;
+  Soup_reconstruction<Kernel, Triangles, ConcurrencyTag> steps(points, triangles, input_index, kernel);
+  steps.take_points(given);
+  steps.weld_exact_duplicates();
+  if(policy == Small_features::COLLAPSE && !whole_soup) {
+    // The flips of degenerate triangles are not followed by the taint: such a soup is not tiled.
+    const Kernel::Collinear_3 collinear = kernel.collinear_3_object();
+    for(const auto& t : triangles)
+      if(collinear(points[t[0]], points[t[1]], points[t[2]])) {
+        run.degenerate_under_collapse = true;
+        return run;
+      }
+  }
+  if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
+  steps.build_tables();
+  // The depth of a point: the region holds every point within it. A region that holds every cell
+  // holds the whole soup (no triangle leaves the cube): nothing is shallow there.
+  std::vector<double> depth(points.size(), std::numeric_limits<double>::infinity());
+  if(!plan.holds_every_cell(tile))
+    for(std::size_t v = 0; v < points.size(); ++v)
+      depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile);
+  Tile_taint<Kernel> taint(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
+  Default_snap_visitor visitor;
+  steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, taint);
+  for(const auto& t : triangles) {
+    Tile_corners c;
+    for(std::size_t k = 0; k < 3; ++k) c[k] = {{points[t[k]].x(), points[t[k]].y(), points[t[k]].z()}};
+    if(plan.owner(c) != tile) continue;
+    if(taint.tainted(t[0]) || taint.tainted(t[1]) || taint.tainted(t[2]))
+      ++run.tainted_owned;
+    else
+      run.owned.push_back(c);
+  }
+  return run;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSoupTopologyTiling
+/// \brief repairs the soup of `source` as `reconstruct_topology()` does (exact weld, then rounds of
+/// welding and T-junction splitting), tile by tile: the same triangles on the same points,
+/// written to `points` and `triangles` in the canonical order of `canonical_triangle_soup()`.
+///
+/// The soup is planned into `number_of_tiles` tiles (`plan_tiles()`, level 7) and spilled into
+/// `folder` (`write_tile_files()`, one file per tile, removed as each tile is done). Every tile
+/// is repaired on its region (its cells grown by the halo) with the pipeline's own steps while the
+/// taint of its points is followed phase by phase (`doc/Soup_topology/Tiled_repair_design.md`);
+/// the triangles the tile owns (by the anchor of their output corners) are kept when none of their
+/// corners is tainted. Otherwise the tile is repaired again with the halo doubled, from the
+/// source, until it is clean: the output never holds a decision the region could not certify.
+/// A region that grows past the bounding cube is the whole soup, which taints nothing.
+///
+/// Memory: one tile's region, its repair, and the owned triangles of the tiles done (72 bytes
+/// each).
+///
+/// \tparam ConcurrencyTag passed on to the steps of each tile's repair (the tiles run one after
+///         the other)
+/// \tparam TriangleSource as for `plan_tiles()`: `Soup_triangle_source`, `Binary_STL_source`, ...
+/// \param source the soup, streamed four times (plan, spill) and once more per repeated tile
+/// \param number_of_tiles at least 1
+/// \param folder an existing folder for the spill files
+/// \param points the output points, sorted
+/// \param triangles the output triangles, sorted
+/// \param np named parameters:
+///   - `snapping_tolerance`: the absolute tolerance (required);
+///   - `maximum_number_of_rounds` (8) and `do_split_t_junctions` (`true`), as for
+///     `reconstruct_topology()`;
+///   - `small_features` (`Small_features::COLLAPSE`), as for `reconstruct_topology()`; a soup
+///     with a degenerate triangle under `COLLAPSE` is repaired as one tile (the report says so);
+///   - `tile_halo`: the halo of the first runs (default: four times the tolerance plus four times
+///     the mean edge length of the soup); it changes the time, never the result.
+/// \throws Invalid_input for a missing or bad tolerance or a bad argument; the exceptions of the
+///         source and of the spill files
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleSource,
+          class NamedParameters = CGAL::parameters::Default_named_parameters>
+Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& source, std::size_t number_of_tiles,
+                                                       const std::string& folder,
+                                                       std::vector<CGAL::Epick::Point_3>& points,
+                                                       std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                                       const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  static_assert(!is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value,
+                "tiled_reconstruct_topology: give the absolute tolerance (snapping_tolerance)");
+  static_assert(is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value &&
+                  !internal::has_vertex_tolerance_map<NamedParameters>(),
+                "tiled_reconstruct_topology: one absolute tolerance only (snapping_tolerance)");
+  const double tolerance = CGAL::to_double(get_parameter(np, CGAL::internal_np::snapping_tolerance));
+  if(!(tolerance >= 0) || !std::isfinite(4 * tolerance * tolerance))
+    throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
+  const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
+  const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
+  const Small_features policy = internal::small_features_policy(np);
+
+  Tiled_reconstruction_report report;
+  report.tolerance = tolerance;
+  // The halo of the first runs. The taint of a region starts at its edge, where the stars are cut,
+  // spreads by about one star in the first weld, and further only through decisions taken near
+  // tainted points (the design page): four mean edges cover the jittered seams measured. The
+  // check grows it where that is not enough. The mean edge length comes from a first stream.
+  Tile_plan plan = plan_tiles(source, number_of_tiles, 0);
+  const double default_halo = 4 * tolerance + 4 * plan.mean_edge_length();
+  const double halo = choose_parameter(get_parameter(np, internal_np::tile_halo), default_halo > 0 ? default_halo : 1.0);
+  if(!(halo > 0) || !std::isfinite(halo)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
+  plan = plan_tiles(source, number_of_tiles, halo);
+  report.first_halo = report.largest_halo = halo;
+  report.input_triangles = plan.number_of_triangles();
+  report.tiles = plan.number_of_tiles();
+  const Tile_files files = write_tile_files(source, plan, folder);
+  for(std::size_t h : files.halo) report.halo_triangles += h;
+
+  std::vector<Tile_corners> kept, region;
+  bool whole = false;
+  for(std::size_t tile = 0; tile < plan.number_of_tiles() && !whole; ++tile) {
+    region.clear();
+    for(const Tile_triangle& t : read_tile_file(files.files[tile])) region.push_back(t.corners);
+    std::remove(files.files[tile].c_str());
+    // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
+    const double enough = 4 * (plan.side() + tolerance) + halo;
+    for(double h = halo;; h *= 2) {
+      report.largest_halo = std::max(report.largest_halo, h);
+      report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
+      ++report.tile_runs;
+      internal::Tile_run run =
+        internal::repair_tile_region<ConcurrencyTag>(region, plan, tile, h, tolerance, max_rounds, do_split, policy);
+      if(run.degenerate_under_collapse) {
+        whole = true;
+        report.whole_soup_reason = "a degenerate triangle under Small_features::COLLAPSE (its flips are not tiled)";
+        break;
+      }
+      if(run.tainted_owned == 0) {
+        kept.insert(kept.end(), run.owned.begin(), run.owned.end());
+        break;
+      }
+      report.discarded_triangles += run.tainted_owned;
+      if(h == halo) ++report.repeated_tiles;
+      if(h > enough) throw std::logic_error("tiled_reconstruct_topology: a region holding the whole soup is tainted");
+      region.clear();
+      source.for_each([&](const Tile_corners& c, std::uint64_t) {
+        if(plan.may_meet_region(c, tile, 2 * h)) region.push_back(c);
+      });
+    }
+  }
+  if(whole) {
+    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(files.files[tile].c_str());
+    // One tile holding everything, deep enough that nothing is tainted.
+    Tile_plan one = plan_tiles(source, 1, 0);
+    region.clear();
+    source.for_each([&](const Tile_corners& c, std::uint64_t) { region.push_back(c); });
+    report.whole_soup = true;
+    ++report.tile_runs;
+    report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
+    const double deep = 4 * (one.side() + tolerance);
+    kept = internal::repair_tile_region<ConcurrencyTag>(region, one, 0, deep, tolerance, max_rounds, do_split, policy, true)
+             .owned;
+  }
+  canonical_triangle_soup(kept, points, triangles);
+  report.output_points = points.size();
+  report.output_triangles = triangles.size();
+  return report;
+}
+
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_TILED_RECONSTRUCT_TOPOLOGY_H

@@ -1,0 +1,387 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The tiled repair against the in-memory one: the same triangles on the same points, in the
+// canonical order, for 1 to 64 tiles, on real meshes, generated seams, a shuffled copy, and a
+// chain of points that the first halo cannot decide.
+
+#include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/tiled_reconstruct_topology.h>
+#include <Soup_topology/internal/tile_taint.h>
+
+#include "soup_generators.h"
+#include "test_utilities.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+// The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
+// test files as one translation unit.
+namespace tiled_reconstruct_topology_test {
+
+namespace {
+
+namespace ST = Soup_topology;
+using Point = CGAL::Epick::Point_3;
+using Triangle = std::array<std::size_t, 3>;
+using Out_triangle = std::array<std::uint32_t, 3>;
+
+struct Soup
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+};
+
+struct Canonical
+{
+  std::vector<Point> points;
+  std::vector<Out_triangle> triangles;
+};
+
+double diagonal(const std::vector<Point>& points)
+{
+  const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
+  return std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                   CGAL::square(box.zmax() - box.zmin()));
+}
+
+// The in-memory repair, in the canonical order.
+template <class NamedParameters>
+Canonical in_memory(Soup soup, const NamedParameters& np)
+{
+  ST::reconstruct_topology(soup.points, soup.triangles, np);
+  Canonical c;
+  ST::canonical_triangle_soup(soup.points, soup.triangles, c.points, c.triangles);
+  return c;
+}
+
+template <class NamedParameters>
+Canonical tiled(const Soup& soup, std::size_t tiles, const NamedParameters& np, ST::Tiled_reconstruction_report* report = nullptr)
+{
+  const std::string folder = soup_test::temporary_folder("tiled");
+  Canonical c;
+  const ST::Tiled_reconstruction_report r = ST::tiled_reconstruct_topology(
+    ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(soup.points, soup.triangles), tiles, folder, c.points,
+    c.triangles, np);
+  EXPECT_EQ(r.output_triangles, c.triangles.size());
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "spill files left in " << folder;
+  std::filesystem::remove_all(folder);
+  if(report != nullptr) *report = r;
+  return c;
+}
+
+::testing::AssertionResult same(const Canonical& expected, const Canonical& got)
+{
+  if(expected.points != got.points)
+    return ::testing::AssertionFailure() << "points differ: " << expected.points.size() << " expected, " << got.points.size()
+                                         << " tiled";
+  if(expected.triangles != got.triangles) {
+    std::size_t first = 0;
+    while(first < std::min(expected.triangles.size(), got.triangles.size()) &&
+          expected.triangles[first] == got.triangles[first])
+      ++first;
+    return ::testing::AssertionFailure() << "triangles differ from the " << first << "th of " << expected.triangles.size()
+                                         << " expected (" << got.triangles.size() << " tiled)";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// A real mesh cut into patches with T-junctions on their borders and jittered copies of their
+// vertices.
+Soup jittered_seams(const std::string& file, std::size_t patches, double relative_jitter, unsigned seed)
+{
+  Soup mesh;
+  soup_test::read_data_mesh(file, mesh.points, mesh.triangles);
+  const auto generated =
+    soup_test::t_junction_soup(mesh.points, mesh.triangles, patches, relative_jitter * diagonal(mesh.points), seed);
+  return Soup{generated.points, generated.triangles};
+}
+
+TEST(TiledReconstruction, JitteredSeamsOfRealMeshesForOneToSixtyFourTiles)
+{
+  for(const char* file : {"clean/elephant.off", "clean/fandisk.off.xz"}) {
+    const Soup soup = jittered_seams(file, 6, 1e-6, 5);
+    const double tolerance = 1e-5 * diagonal(soup.points);
+    const auto np = CGAL::parameters::snapping_tolerance(tolerance);
+    const Canonical expected = in_memory(soup, np);
+    ASSERT_GT(expected.triangles.size(), 0u);
+    for(std::size_t tiles : {1, 2, 8, 64}) {
+      ST::Tiled_reconstruction_report report;
+      EXPECT_TRUE(same(expected, tiled(soup, tiles, np, &report))) << file << ", " << tiles << " tiles";
+      EXPECT_EQ(report.tiles, tiles);
+      EXPECT_FALSE(report.whole_soup) << report.whole_soup_reason;
+      EXPECT_GE(report.tile_runs, tiles);
+    }
+    // A first halo of twice the tolerance: the taint of the region's edge reaches owned triangles,
+    // the tiles are repaired again, and the output is the same.
+    ST::Tiled_reconstruction_report report;
+    EXPECT_TRUE(same(expected, tiled(soup, 8, ST::parameters::tile_halo(2 * tolerance, np), &report))) << file;
+    EXPECT_GT(report.repeated_tiles, 0u) << file;
+    EXPECT_EQ(report.first_halo, 2 * tolerance);
+  }
+}
+
+TEST(TiledReconstruction, ShuffledSoupGivesTheSameOutput)
+{
+  const Soup soup = jittered_seams("clean/elephant.off", 4, 1e-6, 9);
+  Soup shuffled = soup;
+  std::mt19937 rng(3);
+  for(Triangle& t : shuffled.triangles) std::rotate(t.begin(), t.begin() + (rng() % 3), t.end());
+  std::shuffle(shuffled.triangles.begin(), shuffled.triangles.end(), rng);
+  const auto np = CGAL::parameters::snapping_tolerance(1e-5 * diagonal(soup.points));
+  EXPECT_TRUE(same(tiled(soup, 8, np), tiled(shuffled, 8, np)));
+}
+
+TEST(TiledReconstruction, RealDefectsUnderBothPolicies)
+{
+  struct Case
+  {
+    const char* file;
+    double tolerance;
+  };
+  for(const Case c : {Case{"cad/ALSTOM_TEST4.off", 1e-6}, Case{"cgal_repair/pig.stl.xz", 0.3},
+                      Case{"cgal_repair/quads_to_stitch.off", 1e-4}}) {
+    Soup soup;
+    soup_test::read_data_mesh(c.file, soup.points, soup.triangles);
+    for(ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+      const auto np = ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(c.tolerance));
+      const Canonical expected = in_memory(soup, np);
+      for(std::size_t tiles : {2, 8}) {
+        ST::Tiled_reconstruction_report report;
+        EXPECT_TRUE(same(expected, tiled(soup, tiles, np, &report)))
+          << c.file << ", " << tiles << " tiles, policy " << int(policy);
+        if(policy == ST::Small_features::REFUSE) {
+          EXPECT_FALSE(report.whole_soup) << c.file;
+        }
+        EXPECT_TRUE(same(expected, tiled(soup, tiles, ST::parameters::tile_halo(2 * c.tolerance, np))))
+          << c.file << ", " << tiles << " tiles, policy " << int(policy) << ", halo 2 t";
+      }
+    }
+  }
+}
+
+// Two strips of small triangles (0.5 t wide, 1.5 t high), one above the other, their facing
+// borders 0.3 t apart and their border vertices 0.5 t apart: one component of the tolerance graph
+// along the whole soup (200 t), longer than the halo of the first runs (about 9 t). The tiles are repaired again on larger regions, and the output
+// is still the in-memory one.
+TEST(TiledReconstruction, ChainLongerThanTheHaloIsRepairedAgain)
+{
+  Soup soup;
+  const double t = 1e-3, step = 0.5 * t;
+  const std::size_t n = 400;
+  const double height = 1.5 * t;
+  for(double y0 : {0.0, -height - 0.3 * t}) {
+    const std::size_t first = soup.points.size();
+    for(std::size_t i = 0; i <= n; ++i) {
+      soup.points.emplace_back(double(i) * step, y0, 0);
+      soup.points.emplace_back(double(i) * step, y0 + height, 0);
+    }
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::size_t a = first + 2 * i;
+      soup.triangles.push_back({a, a + 2, a + 3});
+      soup.triangles.push_back({a, a + 3, a + 1});
+    }
+  }
+  const auto np = CGAL::parameters::snapping_tolerance(t);
+  const Canonical expected = in_memory(soup, np);
+  for(std::size_t tiles : {2, 8}) {
+    ST::Tiled_reconstruction_report report;
+    EXPECT_TRUE(same(expected, tiled(soup, tiles, np, &report))) << tiles << " tiles";
+    EXPECT_GT(report.repeated_tiles, 0u) << tiles << " tiles";
+    EXPECT_GT(report.discarded_triangles, 0u);
+    EXPECT_GT(report.largest_halo, report.first_halo);
+    EXPECT_LT(report.first_halo, 20 * t);
+  }
+}
+
+// Two strips along x meet at a seam that every tile boundary crosses: the upper strip's border
+// has 200 edges, the lower strip's 400, 0.3 t below it and shifted along it by up to half the
+// tolerance: welds and T-junctions at every depth of every region's edge, for a halo of twice the
+// tolerance and for the default.
+TEST(TiledReconstruction, SeamAcrossEveryTileBoundary)
+{
+  Soup soup;
+  const double t = 1e-3;
+  const std::size_t n = 200;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> shift(-0.5 * t, 0.5 * t);
+  // upper strip: (i / n, 0) and (i / n, 0.01)
+  for(std::size_t i = 0; i <= n; ++i) {
+    soup.points.emplace_back(double(i) / n, 0, 0);
+    soup.points.emplace_back(double(i) / n, 0.01, 0);
+  }
+  for(std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = 2 * i;
+    soup.triangles.push_back({a, a + 2, a + 3});
+    soup.triangles.push_back({a, a + 3, a + 1});
+  }
+  // lower strip: its top border has twice the vertices, the odd ones on the middles of the
+  // upper strip's edges (T-junctions), all moved along x by up to t / 2
+  const std::size_t first = soup.points.size();
+  for(std::size_t i = 0; i <= 2 * n; ++i) {
+    const double x = double(i) / double(2 * n) + (i == 0 || i == 2 * n ? 0.0 : shift(rng));
+    soup.points.emplace_back(x, -0.3 * t, 0);
+    soup.points.emplace_back(double(i) / double(2 * n), -0.01, 0);
+  }
+  for(std::size_t i = 0; i < 2 * n; ++i) {
+    const std::size_t a = first + 2 * i;
+    soup.triangles.push_back({a, a + 1, a + 3});
+    soup.triangles.push_back({a, a + 3, a + 2});
+  }
+  const auto np = CGAL::parameters::snapping_tolerance(t);
+  const Canonical expected = in_memory(soup, np);
+  for(std::size_t tiles : {2, 8, 64}) {
+    EXPECT_TRUE(same(expected, tiled(soup, tiles, np))) << tiles << " tiles";
+    ST::Tiled_reconstruction_report report;
+    EXPECT_TRUE(same(expected, tiled(soup, tiles, ST::parameters::tile_halo(2 * t, np), &report))) << tiles << " tiles, halo 2 t";
+    EXPECT_GT(report.repeated_tiles, 0u) << tiles << " tiles";
+  }
+}
+
+// The rules of the taint, one by one, on small soups with given depths (tolerance 1): which
+// points each phase taints.
+struct Taint_case
+{
+  std::vector<Point> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<double> depth;
+
+  // the points tainted by the phase `phase` ("weld" or "split") when `tainted_before` are
+  std::vector<std::size_t> tainted_after(const std::string& phase, const std::vector<std::size_t>& tainted_before = {}) const
+  {
+    ST::internal::Tile_taint<CGAL::Epick> taint(points, depth, 1.0, false, CGAL::Epick());
+    const ST::Adjacency_tables tables(triangles, points.size());
+    for(std::size_t v : tainted_before) taint.taint(static_cast<ST::Adjacency_tables::size_type>(v));
+    if(phase == "weld")
+      taint.before_weld(points, tables);
+    else
+      taint.before_split(points, tables);
+    std::vector<std::size_t> out;
+    for(std::size_t v = 0; v < points.size(); ++v)
+      if(taint.tainted(static_cast<ST::Adjacency_tables::size_type>(v))) out.push_back(v);
+    return out;
+  }
+};
+
+TEST(TiledReconstructionTaint, AWeldUnitWithAShallowMemberIsTainted)
+{
+  // Two separate triangles whose left corners 0 and 3 are 0.5 apart; a third far away.
+  Taint_case c;
+  c.points = {Point(0, 0, 0), Point(-10, 0, 0), Point(-10, 10, 0), Point(0.5, 0, 0), Point(10, 0, 0), Point(10, 10, 0),
+              Point(100, 0, 0), Point(110, 0, 0), Point(110, 10, 0)};
+  c.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  c.depth.assign(c.points.size(), 50.0);
+  EXPECT_TRUE(c.tainted_after("weld").empty());
+  // 3 shallow: its unit {0, 3} is tainted, and so are the units {4} and {5} (border vertices of
+  // a triangle with a shallow corner); the far triangle is not.
+  c.depth[3] = 0.5;
+  EXPECT_EQ(c.tainted_after("weld"), (std::vector<std::size_t>{0, 3, 4, 5}));
+  c.depth[3] = 50;
+  c.depth[2] = 0.5; // a shallow corner of a triangle of member 0
+  EXPECT_EQ(c.tainted_after("weld"), (std::vector<std::size_t>{0, 1, 2, 3}));
+}
+
+TEST(TiledReconstructionTaint, UnitsFollowTheToleranceGraphAndTheTrianglesThatAreNotRigid)
+{
+  // Border vertices 0, 3, 6 in a chain 0.9 apart (0 and 6 are 1.8 apart); 6 is shallow.
+  Taint_case c;
+  c.points = {Point(0, 0, 0),    Point(-10, 0, 0), Point(-10, 10, 0), Point(0.9, 0, 0), Point(0.9, -10, 0),
+              Point(20, -10, 0), Point(1.8, 0, 0), Point(10, 0, 0),   Point(10, 10, 0)};
+  c.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  c.depth.assign(c.points.size(), 50.0);
+  c.depth[8] = 0.5;
+  EXPECT_EQ(c.tainted_after("weld"), (std::vector<std::size_t>{0, 3, 6, 7, 8}));
+  // A sliver (not rigid) joins a far border vertex 10 to vertex 0's unit; a fat triangle would not.
+  Taint_case sliver = c;
+  sliver.points[3] = Point(30, 0, 0); // the chain is cut: 0 alone, 6 alone
+  sliver.points.push_back(Point(0.5, 20, 0));
+  sliver.points.push_back(Point(0.4, 40, 0));
+  sliver.depth.assign(sliver.points.size(), 50.0);
+  sliver.depth[1] = 0.5;                       // 0's unit is tainted through its triangle
+  sliver.triangles.push_back({0, 9, 10});      // a sliver from 0 to the far vertices 9, 10
+  EXPECT_EQ(sliver.tainted_after("weld"), (std::vector<std::size_t>{0, 1, 2, 9, 10}));
+  Taint_case fat = sliver;
+  fat.points[9] = Point(20, 20, 0);
+  fat.points[10] = Point(-20, 40, 0);
+  EXPECT_EQ(fat.tainted_after("weld"), (std::vector<std::size_t>{0, 1, 2}));
+}
+
+TEST(TiledReconstructionTaint, ABorderVertexNearAStarThatMayDifferIsTainted)
+{
+  // A closed tetrahedron (no border vertex) with vertex 0 tainted, so vertex 1's star may differ
+  // (1 may be a border vertex of the whole soup); a separate triangle's vertex 4 is 0.5 from 1.
+  Taint_case c;
+  c.points = {Point(0, 0, 0),  Point(10, 0, 0),  Point(0, 10, 0), Point(0, 0, 10),
+              Point(10.5, 0, 0), Point(30, 0, 0), Point(20, 20, 0)};
+  c.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {4, 5, 6}};
+  c.depth.assign(c.points.size(), 50.0);
+  EXPECT_TRUE(c.tainted_after("weld").empty());
+  EXPECT_EQ(c.tainted_after("weld", {0}), (std::vector<std::size_t>{0, 4}));
+}
+
+TEST(TiledReconstructionTaint, ASplitNearTheRegionsEdgeOrNearTaintIsTainted)
+{
+  // Triangle 0 1 2 with border edge [0,1]; vertex 3, of another triangle, 0.5 from its middle.
+  Taint_case c;
+  c.points = {Point(0, 0, 0),    Point(10, 0, 0),  Point(5, 10, 0),   Point(5, -0.5, 0),
+              Point(4, -10, 0),  Point(6, -10, 0), Point(50, 50, 0),  Point(60, 50, 0), Point(55, 60, 0)};
+  c.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  c.depth.assign(c.points.size(), 50.0);
+  EXPECT_TRUE(c.tainted_after("split").empty());
+  c.depth[3] = 0.8; // the vertex near the edge is shallow: the triangle it may split is tainted
+  EXPECT_EQ(c.tainted_after("split"), (std::vector<std::size_t>{0, 1, 2, 3}));
+  c.depth[3] = 50;
+  c.depth[0] = c.depth[1] = 6; // the edge reaches within twice the tolerance of the region's edge
+  EXPECT_EQ(c.tainted_after("split"), (std::vector<std::size_t>{0, 1, 2, 3}));
+  c.depth[0] = c.depth[1] = 8; // not any more
+  EXPECT_TRUE(c.tainted_after("split").empty());
+  // A tainted vertex near the edge: the triangle is tainted (its split may differ).
+  EXPECT_EQ(c.tainted_after("split", {3}), (std::vector<std::size_t>{0, 1, 2, 3}));
+}
+
+TEST(TiledReconstructionTaint, TaintSpreadsThroughDecisionsOnly)
+{
+  // Two triangles sharing edge [1,2]; vertex 0 is tainted. With no vertex within the tolerance of
+  // an edge, a split phase taints nothing more: no ring of stars spreads.
+  Taint_case c;
+  c.points = {Point(0, 0, 0), Point(10, 0, 0), Point(5, 10, 0), Point(15, 10, 0), Point(30, 30, 0), Point(40, 30, 0),
+              Point(35, 40, 0)};
+  c.triangles = {{0, 1, 2}, {1, 3, 2}, {4, 5, 6}};
+  c.depth.assign(c.points.size(), 50.0);
+  EXPECT_EQ(c.tainted_after("split", {0}), (std::vector<std::size_t>{0}));
+  // Vertex 4 a quarter of the tolerance from the shared edge, whose border status may differ (its
+  // other triangle has a tainted corner): a split of the neighbour is possible in the whole soup,
+  // so the neighbour's corners and vertex 4 are tainted.
+  Taint_case near = c;
+  near.points[4] = Point(7.5 + 0.25 * 10 / std::sqrt(125.0), 5 + 0.25 * 5 / std::sqrt(125.0), 0);
+  EXPECT_EQ(near.tainted_after("split", {0}), (std::vector<std::size_t>{0, 1, 2, 3, 4}));
+}
+
+TEST(TiledReconstruction, BadArgumentsAreRefused)
+{
+  Soup soup;
+  soup.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0)};
+  soup.triangles = {{0, 1, 2}};
+  const std::string folder = soup_test::temporary_folder("tiled_bad");
+  std::vector<Point> points;
+  std::vector<Out_triangle> triangles;
+  ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(soup.points, soup.triangles);
+  EXPECT_THROW(ST::tiled_reconstruct_topology(source, 2, folder, points, triangles, CGAL::parameters::snapping_tolerance(-1.0)),
+               ST::Invalid_input);
+  EXPECT_THROW(ST::tiled_reconstruct_topology(source, 0, folder, points, triangles, CGAL::parameters::snapping_tolerance(1.0)),
+               ST::Invalid_input);
+  std::filesystem::remove_all(folder);
+}
+
+} // namespace
+
+} // namespace tiled_reconstruct_topology_test
