@@ -5,6 +5,7 @@
 // canonical order, for 1 to 64 tiles, on real meshes, generated seams, a shuffled copy, and a
 // chain of points that the first halo cannot decide.
 
+#include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/tiled_reconstruct_topology.h>
 #include <Soup_topology/internal/tile_taint.h>
@@ -364,6 +365,60 @@ TEST(TiledReconstructionTaint, TaintSpreadsThroughDecisionsOnly)
   Taint_case near = c;
   near.points[4] = Point(7.5 + 0.25 * 10 / std::sqrt(125.0), 5 + 0.25 * 5 / std::sqrt(125.0), 0);
   EXPECT_EQ(near.tainted_after("split", {0}), (std::vector<std::size_t>{0, 1, 2, 3, 4}));
+}
+
+// The tool: `repair --tiles N` writes the mesh that `repair` writes, triangle for triangle (the
+// order aside): the pig (a binary STL, streamed) and ALSTOM_TEST4.off (read whole).
+TEST(TiledReconstruction, ToolWritesTheSameMeshWithTiles)
+{
+  struct Case
+  {
+    std::string file, tolerance;
+  };
+  const std::string folder = soup_test::temporary_folder("tiled_tool");
+  for(const Case& c : {Case{soup_test::data_file("cgal_repair/pig.stl.xz"), "0.3"},
+                       Case{soup_test::data_file("cad/ALSTOM_TEST4.off"), "1e-6"}}) {
+    std::vector<Canonical> written;
+    for(const std::string tiles : {"", " --tiles 8"}) {
+      const std::string out = folder + "/out.off";
+      const auto r = soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + c.file + "' -o '" + out +
+                                            "' --json --tolerance " + c.tolerance + tiles + " 2>&1");
+      ASSERT_EQ(r.second, 0) << r.first;
+      if(!tiles.empty()) {
+        EXPECT_EQ(soup_test::json_integer(r.first, "tiles"), 8) << r.first;
+      }
+      Soup soup;
+      ST::IO::read_triangle_soup(out, soup.points, soup.triangles);
+      written.emplace_back();
+      ST::canonical_triangle_soup(soup.points, soup.triangles, written.back().points, written.back().triangles);
+    }
+    EXPECT_TRUE(same(written[0], written[1])) << c.file;
+  }
+  const auto bad = soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" +
+                                          soup_test::data_file("cad/ALSTOM_TEST4.off") + "' -o '" + folder +
+                                          "/out.off' --relative-tolerance 1e-6 --tiles 8 2>&1");
+  EXPECT_EQ(bad.second, 2) << bad.first;
+  EXPECT_NE(bad.first.find("--tiles needs an absolute --tolerance"), std::string::npos) << bad.first;
+  std::filesystem::remove_all(folder);
+}
+
+TEST(TiledReconstruction, CanonicalOrder)
+{
+  // Two triangles on a repeated point and an unused one; the same soup reindexed, rotated and
+  // reordered has the same canonical order; a reversed triangle does not.
+  const std::vector<Point> points = {Point(1, 0, 0), Point(0, 0, 0), Point(9, 9, 9), Point(0, 1, 0), Point(1, 0, 0),
+                                     Point(1, 1, 0)};
+  const std::vector<Triangle> triangles = {{1, 0, 3}, {4, 5, 3}};
+  Canonical c;
+  ST::canonical_triangle_soup(points, triangles, c.points, c.triangles);
+  EXPECT_EQ(c.points, (std::vector<Point>{Point(0, 0, 0), Point(0, 1, 0), Point(1, 0, 0), Point(1, 1, 0)}));
+  EXPECT_EQ(c.triangles, (std::vector<Out_triangle>{{0, 2, 1}, {1, 2, 3}}));
+  const std::vector<Point> other_points = {Point(1, 1, 0), Point(0, 1, 0), Point(1, 0, 0), Point(0, 0, 0)};
+  Canonical d;
+  ST::canonical_triangle_soup(other_points, std::vector<Triangle>{{1, 2, 0}, {2, 1, 3}}, d.points, d.triangles);
+  EXPECT_TRUE(same(c, d));
+  ST::canonical_triangle_soup(other_points, std::vector<Triangle>{{1, 2, 0}, {1, 2, 3}}, d.points, d.triangles);
+  EXPECT_FALSE(same(c, d));
 }
 
 TEST(TiledReconstruction, BadArgumentsAreRefused)

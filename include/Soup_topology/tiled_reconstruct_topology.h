@@ -55,45 +55,90 @@ struct Tiled_reconstruction_report
   std::size_t output_triangles = 0;
 };
 
-/// \ingroup PkgSoupTopologyTiling
-/// \brief the canonical order of a triangle soup given by the corners of its triangles: the
-/// points are the distinct corners in lexicographic order, every triangle starts at its smallest
-/// point index (its orientation kept), and the triangles are sorted. Two soups that are the same
-/// set of triangles on the same coordinates, however ordered, have the same canonical order.
-inline void canonical_triangle_soup(const std::vector<Tile_corners>& corners,
-                                    std::vector<CGAL::Epick::Point_3>& points,
-                                    std::vector<std::array<std::uint32_t, 3>>& triangles)
+namespace internal {
+
+/// a part of a soup: its points (each used by a triangle, none repeated within the part) and its
+/// triangles.
+struct Soup_part
 {
-  std::vector<std::array<double, 3>> distinct;
-  distinct.reserve(3 * corners.size());
-  for(const Tile_corners& c : corners) distinct.insert(distinct.end(), c.begin(), c.end());
-  std::sort(distinct.begin(), distinct.end());
-  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+/// the parts put together in the canonical order (`canonical_triangle_soup()`), the points of
+/// different parts with equal coordinates merged; the parts are emptied on the way. Memory: the
+/// points of all parts, 32 bytes each, and the triangles, 12 bytes each (a part's are freed as
+/// they are copied).
+inline void merge_in_canonical_order(std::vector<Soup_part>& parts, std::vector<CGAL::Epick::Point_3>& points,
+                                     std::vector<std::array<std::uint32_t, 3>>& triangles)
+{
+  std::vector<std::array<double, 3>> all;
+  std::vector<std::size_t> offset;
+  std::size_t total = 0, total_triangles = 0;
+  for(const Soup_part& p : parts) {
+    offset.push_back(total);
+    total += p.points.size();
+    total_triangles += p.triangles.size();
+  }
+  all.reserve(total);
+  for(Soup_part& p : parts) {
+    all.insert(all.end(), p.points.begin(), p.points.end());
+    std::vector<std::array<double, 3>>().swap(p.points);
+  }
+  std::vector<std::uint32_t> order(total);
+  for(std::size_t i = 0; i < total; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return all[x] < all[y]; });
+  std::vector<std::uint32_t> global(total);
+  points.clear();
+  for(std::size_t k = 0; k < total; ++k) {
+    const std::array<double, 3>& q = all[order[k]];
+    if(k == 0 || all[order[k - 1]] != q) points.emplace_back(q[0], q[1], q[2]);
+    global[order[k]] = static_cast<std::uint32_t>(points.size() - 1);
+  }
+  std::vector<std::uint32_t>().swap(order);
+  std::vector<std::array<double, 3>>().swap(all);
   triangles.clear();
-  triangles.reserve(corners.size());
-  for(const Tile_corners& c : corners) {
-    std::array<std::uint32_t, 3> t;
-    for(std::size_t k = 0; k < 3; ++k)
-      t[k] = static_cast<std::uint32_t>(std::lower_bound(distinct.begin(), distinct.end(), c[k]) - distinct.begin());
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    triangles.push_back(t);
+  triangles.reserve(total_triangles);
+  for(std::size_t part = 0; part < parts.size(); ++part) {
+    for(const auto& t : parts[part].triangles) {
+      std::array<std::uint32_t, 3> g{{global[offset[part] + t[0]], global[offset[part] + t[1]], global[offset[part] + t[2]]}};
+      std::rotate(g.begin(), std::min_element(g.begin(), g.end()), g.end());
+      triangles.push_back(g);
+    }
+    std::vector<std::array<std::uint32_t, 3>>().swap(parts[part].triangles);
   }
   std::sort(triangles.begin(), triangles.end());
-  points.clear();
-  points.reserve(distinct.size());
-  for(const auto& p : distinct) points.emplace_back(p[0], p[1], p[2]);
 }
 
+} // namespace internal
+
 /// \ingroup PkgSoupTopologyTiling
-/// \brief the canonical order (`canonical_triangle_soup()`) of an indexed soup.
+/// \brief the canonical order of an indexed triangle soup: the points are the distinct
+/// coordinates of the triangles' corners in lexicographic order (points no triangle uses are left
+/// out, equal points merged), every triangle starts at its smallest point index (its orientation
+/// kept), and the triangles are sorted. Two soups that are the same set of triangles on the same
+/// coordinates, however ordered and indexed, have the same canonical order.
 template <class PointRange, class TriangleRange>
 void canonical_triangle_soup(const PointRange& points_in, const TriangleRange& triangles_in,
                              std::vector<CGAL::Epick::Point_3>& points, std::vector<std::array<std::uint32_t, 3>>& triangles)
 {
-  std::vector<Tile_corners> corners;
-  Soup_triangle_source<PointRange, TriangleRange>(points_in, triangles_in)
-    .for_each([&](const Tile_corners& c, std::uint64_t) { corners.push_back(c); });
-  canonical_triangle_soup(corners, points, triangles);
+  std::vector<internal::Soup_part> parts(1);
+  constexpr std::uint32_t unused = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> local(points_in.size(), unused);
+  for(const auto& t : triangles_in) {
+    std::array<std::uint32_t, 3> l;
+    for(std::size_t k = 0; k < 3; ++k) {
+      const std::size_t v = static_cast<std::size_t>(t[k]);
+      if(local[v] == unused) {
+        local[v] = static_cast<std::uint32_t>(parts[0].points.size());
+        const auto& p = points_in[v];
+        parts[0].points.push_back({{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}});
+      }
+      l[k] = local[v];
+    }
+    parts[0].triangles.push_back(l);
+  }
+  internal::merge_in_canonical_order(parts, points, triangles);
 }
 
 namespace internal {
@@ -101,7 +146,7 @@ namespace internal {
 /// what one repair of a tile's region gives back.
 struct Tile_run
 {
-  std::vector<Tile_corners> owned;     // the owned triangles, untainted, by their output corners
+  Soup_part owned;                     // the owned triangles, untainted, on the points they use
   std::size_t tainted_owned = 0;       // owned triangles with a tainted corner
   bool degenerate_under_collapse = false; // a degenerate triangle under COLLAPSE: not tiled
 };
@@ -152,14 +197,25 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   Tile_taint<Kernel> taint(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
   Default_snap_visitor visitor;
   steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, taint);
+  constexpr std::uint32_t unused = static_cast<std::uint32_t>(-1);
+  std::vector<std::uint32_t> local(points.size(), unused);
   for(const auto& t : triangles) {
     Tile_corners c;
     for(std::size_t k = 0; k < 3; ++k) c[k] = {{points[t[k]].x(), points[t[k]].y(), points[t[k]].z()}};
     if(plan.owner(c) != tile) continue;
-    if(taint.tainted(t[0]) || taint.tainted(t[1]) || taint.tainted(t[2]))
+    if(taint.tainted(t[0]) || taint.tainted(t[1]) || taint.tainted(t[2])) {
       ++run.tainted_owned;
-    else
-      run.owned.push_back(c);
+      continue;
+    }
+    std::array<std::uint32_t, 3> l;
+    for(std::size_t k = 0; k < 3; ++k) {
+      if(local[t[k]] == unused) {
+        local[t[k]] = static_cast<std::uint32_t>(run.owned.points.size());
+        run.owned.points.push_back(c[k]);
+      }
+      l[k] = local[t[k]];
+    }
+    run.owned.triangles.push_back(l);
   }
   return run;
 }
@@ -180,8 +236,8 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
 /// source, until it is clean: the output never holds a decision the region could not certify.
 /// A region that grows past the bounding cube is the whole soup, which taints nothing.
 ///
-/// Memory: one tile's region, its repair, and the owned triangles of the tiles done (72 bytes
-/// each).
+/// Memory: one tile's region and its repair, and the owned triangles of the tiles done on the
+/// points they use (12 bytes a triangle, 24 a point), merged at the end.
 ///
 /// \tparam ConcurrencyTag passed on to the steps of each tile's repair (the tiles run one after
 ///         the other)
@@ -241,7 +297,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   const Tile_files files = write_tile_files(source, plan, folder);
   for(std::size_t h : files.halo) report.halo_triangles += h;
 
-  std::vector<Tile_corners> kept, region;
+  std::vector<internal::Soup_part> kept;
+  std::vector<Tile_corners> region;
   bool whole = false;
   for(std::size_t tile = 0; tile < plan.number_of_tiles() && !whole; ++tile) {
     region.clear();
@@ -261,7 +318,7 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
         break;
       }
       if(run.tainted_owned == 0) {
-        kept.insert(kept.end(), run.owned.begin(), run.owned.end());
+        kept.push_back(std::move(run.owned));
         break;
       }
       report.discarded_triangles += run.tainted_owned;
@@ -283,10 +340,12 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
     ++report.tile_runs;
     report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
     const double deep = 4 * (one.side() + tolerance);
-    kept = internal::repair_tile_region<ConcurrencyTag>(region, one, 0, deep, tolerance, max_rounds, do_split, policy, true)
-             .owned;
+    kept.clear();
+    kept.push_back(
+      internal::repair_tile_region<ConcurrencyTag>(region, one, 0, deep, tolerance, max_rounds, do_split, policy, true).owned);
   }
-  canonical_triangle_soup(kept, points, triangles);
+  std::vector<Tile_corners>().swap(region);
+  internal::merge_in_canonical_order(kept, points, triangles);
   report.output_points = points.size();
   report.output_triangles = triangles.size();
   return report;

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 #include <utility>
 #include <vector>
@@ -146,19 +147,51 @@ public:
     // it is no vertex there either, and no split reads it.
     const auto is_vertex = [&](std::size_t y) { return tables.degree(static_cast<size_type>(y)) > 0 || tainted_[y]; };
     // Uncertain vertices: in the band, or near an edge whose border status may differ (the
-    // whole soup's edge may lie a tolerance away, where a tainted end moved).
+    // whole soup's edge may lie a tolerance away, where a tainted end moved). The vertices within
+    // twice the tolerance of the edges of the triangles with a tainted corner are kept for the
+    // second pass (`cached`, three ranges per such triangle).
     std::vector<char> dirty(band);
-    std::vector<std::size_t> near;
+    constexpr std::uint32_t no_slot = static_cast<std::uint32_t>(-1);
+    std::vector<std::uint32_t> slot(tables.number_of_triangles(), no_slot);
+    std::vector<std::size_t> cached, cached_begin;
     for(size_type t = 0; t < tables.number_of_triangles(); ++t) {
       if(!differs(t)) continue;
+      slot[t] = static_cast<std::uint32_t>(cached_begin.size() / 3);
       for(int i = 0; i < 3; ++i) {
-        near.clear();
+        cached_begin.push_back(cached.size());
+        const std::size_t before = cached.size();
         tree_.vertices_near_segment(points[tables.vertex(t, i)], points[tables.vertex(t, (i + 1) % 3)], twice_radius_,
-                                    std::back_inserter(near));
-        for(std::size_t y : near)
-          if(is_vertex(y)) dirty[y] = 1;
+                                    std::back_inserter(cached));
+        cached.erase(std::remove_if(cached.begin() + std::ptrdiff_t(before), cached.end(),
+                                    [&](std::size_t y) { return !is_vertex(y); }),
+                     cached.end());
+        for(std::size_t k = before; k < cached.size(); ++k) dirty[cached[k]] = 1;
       }
     }
+    cached_begin.push_back(cached.size());
+    // Appends to `out` the vertices within `radius` (the tolerance, or twice it) of edge `i` of
+    // `t`, from the cache when the edge is one of a triangle with a tainted corner.
+    const auto near_edge = [&](size_type t, int i, bool twice, std::vector<std::size_t>& out) {
+      size_type holder = t;
+      int local = i;
+      if(twice && slot[t] == no_slot) {
+        const size_type n = tables.neighbor(t, i);
+        if(n != Adjacency_tables::border_edge && n != Adjacency_tables::non_manifold_edge && slot[n] != no_slot) {
+          holder = n;
+          local = tables.edge_index(n, tables.vertex(t, i), tables.vertex(t, (i + 1) % 3));
+        }
+      }
+      if(twice && slot[holder] != no_slot) {
+        const std::size_t k = 3 * std::size_t(slot[holder]) + std::size_t(local);
+        out.insert(out.end(), cached.begin() + std::ptrdiff_t(cached_begin[k]), cached.begin() + std::ptrdiff_t(cached_begin[k + 1]));
+        return;
+      }
+      const std::size_t before = out.size();
+      tree_.vertices_near_segment(points[tables.vertex(t, i)], points[tables.vertex(t, (i + 1) % 3)],
+                                  twice ? twice_radius_ : radius_, std::back_inserter(out));
+      out.erase(std::remove_if(out.begin() + std::ptrdiff_t(before), out.end(), [&](std::size_t y) { return !is_vertex(y); }),
+                out.end());
+    };
     // Whether the edge `i` of `t` is an edge of a triangle with a tainted corner.
     std::vector<size_type> around;
     const auto edge_may_differ = [&](size_type t, int i) {
@@ -181,10 +214,7 @@ public:
         const bool border = tables.is_border_edge(t, i);
         if(!border && !tainted_corner && !(band[a] && band[b] && edge_may_differ(t, i))) continue;
         const std::size_t before = found.size();
-        tree_.vertices_near_segment(points[a], points[b], tainted_corner || !border ? twice_radius_ : radius_,
-                                    std::back_inserter(found));
-        found.erase(std::remove_if(found.begin() + std::ptrdiff_t(before), found.end(), [&](std::size_t y) { return !is_vertex(y); }),
-                    found.end());
+        near_edge(t, i, tainted_corner || !border, found);
         if(border) {
           const double length = std::sqrt(CGAL::to_double(CGAL::squared_distance(points[a], points[b])));
           if((depth_[a] + depth_[b] - length) / 2 <= 2 * tolerance_ * (1 + 1e-9)) uncertain = true;
