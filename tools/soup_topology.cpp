@@ -16,6 +16,7 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/tiled_reconstruct_topology.h>
 #include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
@@ -35,6 +36,7 @@
 #include <tbb/task_scheduler_observer.h>
 
 #include <pthread.h>
+#include <unistd.h>
 #include <signal.h>
 #endif
 
@@ -89,6 +91,7 @@ const char* usage_text =
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "                       [--small-features collapse|refuse] [--html REPORT.html] [--threads N]\n"
+  "                       [--tiles N]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; auto: the one the\n"
   "      gap analysis suggests; per-part: the one it suggests for each part, two points welded\n"
@@ -109,6 +112,9 @@ const char* usage_text =
   "      --html writes a self-contained HTML page with a 3D view of the result (stats: of the\n"
   "      input), its border edges, the holes, the report and the gap histogram of the input;\n"
   "      for repair also the sites where it welded, split, refused or found ambiguity.\n"
+  "      --tiles N repairs the soup in N tiles, one after the other (a binary STL is streamed,\n"
+  "      never held whole), with --tolerance T: the same triangles on the same points, in a\n"
+  "      canonical order; the report gives the tiles' runs instead of the weld's counts.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -385,9 +391,19 @@ struct Repair_options
   bool automatic = false;        // --tolerance auto: the gap analysis chooses the tolerance
   bool per_part = false;         // --tolerance per-part: the analysis per part, a tolerance per point
   std::size_t threads = 0;       // --threads N; 0: all cores
+  std::size_t tiles = 0;         // --tiles N; 0: the soup in memory
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
 };
+
+std::size_t parse_tiles(const std::string& text)
+{
+  char* end = nullptr;
+  const unsigned long n = std::strtoul(text.c_str(), &end, 10);
+  if(text.empty() || *end != '\0' || text[0] == '-' || n < 1 || n > 4096)
+    throw Usage_error("repair: --tiles takes a number of tiles from 1 to 4096, not '" + text + "'");
+  return n;
+}
 
 Repair_options parse_repair_arguments(const std::vector<std::string>& args)
 {
@@ -416,6 +432,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--orientation") o.orientation_policy = parse_orientation_policy(value());
     else if(a == "--small-features") o.small_features = parse_small_features(value());
     else if(a == "--threads") o.threads = parse_threads("repair", value());
+    else if(a == "--tiles") o.tiles = parse_tiles(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -424,6 +441,8 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
   if(o.out.empty()) throw Usage_error("repair: no output file (-o OUT)");
   if((o.tolerance || o.automatic || o.per_part) && o.relative)
     throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
+  if(o.tiles > 0 && (!o.tolerance || !o.html_file.empty()))
+    throw Usage_error("repair: --tiles needs an absolute --tolerance T, and makes no --html page");
   o.out_format = ST::IO::file_extension(o.out);
   if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
@@ -588,6 +607,105 @@ void write_repair_outputs(const Repair_options& o, const std::vector<Point>& poi
   if(report_output) report_output->commit();
 }
 
+// `true` if `file` is a binary STL whose size matches its facet count (the tiling streams it).
+bool is_binary_stl(const std::string& file)
+{
+  if(ST::IO::file_extension(file) != "stl") return false;
+  std::ifstream in(file, std::ios::binary);
+  char header[84];
+  if(!in.read(header, 84)) return false;
+  if(ST::IO::internal::starts_with_solid(header, header + 84) && !ST::IO::internal::has_binary_byte(header, header + 84))
+    return false;
+  std::uint32_t n;
+  std::memcpy(&n, header + 80, 4);
+  in.seekg(0, std::ios::end);
+  return static_cast<std::uint64_t>(in.tellg()) == 84 + 50 * std::uint64_t(n);
+}
+
+// A folder of its own for the spill files, removed with everything in it.
+class Spill_folder
+{
+public:
+  Spill_folder()
+  {
+    namespace fs = std::filesystem;
+    for(unsigned k = 0;; ++k) {
+      path_ = fs::temp_directory_path() / ("soup_topology_tiles_" + std::to_string(::getpid()) + "_" + std::to_string(k));
+      if(fs::create_directory(path_)) break;
+    }
+  }
+  ~Spill_folder()
+  {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  std::string path() const { return path_.string(); }
+private:
+  std::filesystem::path path_;
+};
+
+// `repair --tiles N`: tiled_reconstruct_topology(), then the same orientation and writing.
+int run_tiled_repair(const Repair_options& o)
+{
+  const auto np = ST::parameters::small_features(
+    o.small_features, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::Tiled_reconstruction_report t;
+  std::string format = "stl";
+  {
+    const Spill_folder folder;
+    if(is_binary_stl(o.in)) {
+      t = ST::tiled_reconstruct_topology<Concurrency>(ST::Binary_STL_source({o.in}), o.tiles, folder.path(), points, triangles, np);
+    } else {
+      std::vector<Point> in_points;
+      std::vector<Triangle> in_triangles;
+      format = ST::IO::read_triangle_soup<Concurrency>(o.in, in_points, in_triangles).format;
+      t = ST::tiled_reconstruct_topology<Concurrency>(ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(
+                                                        in_points, in_triangles),
+                                                      o.tiles, folder.path(), points, triangles, np);
+    }
+  }
+  const Progress progress(t.input_triangles > 1000000);
+  progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
+  const ST::Orientation_report orientation =
+    ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
+  const ST::Soup_statistics s =
+    ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
+  std::optional<std::size_t> intersecting;
+  if(o.self_intersections) intersecting = count_self_intersecting_pairs(points, triangles);
+  Report rep;
+  rep.add_string("input", o.in);
+  rep.add_string("output", o.out);
+  rep.add_string("format", format);
+  rep.add("input_triangles", t.input_triangles);
+  rep.add("tolerance", t.tolerance);
+  add_statistics(rep, s, 0);
+  if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
+  rep.add("soup_vertices", t.output_points);
+  rep.add("soup_triangles", t.output_triangles);
+  rep.add("tiles", t.tiles);
+  rep.add("tile_runs", t.tile_runs);
+  rep.add("repeated_tiles", t.repeated_tiles);
+  rep.add("discarded_triangles", t.discarded_triangles);
+  rep.add("first_halo", t.first_halo);
+  rep.add("largest_halo", t.largest_halo);
+  rep.add("largest_tile_triangles", t.largest_tile_triangles);
+  rep.add("halo_triangles", t.halo_triangles);
+  rep.add("whole_soup", t.whole_soup);
+  if(t.whole_soup) rep.add_string("whole_soup_reason", t.whole_soup_reason);
+  rep.add("duplicate_triangles_removed", orientation.duplicate_triangles);
+  rep.add("orientation_flips", orientation.orientation_flips);
+  rep.add("duplicated_points", orientation.duplicated_points);
+  rep.add("output_vertices", s.vertices);
+  rep.add("output_triangles", s.triangles);
+  write_repair_outputs(o, points, triangles, rep, progress);
+  print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
+  const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
+                      (intersecting && *intersecting > 0);
+  return o.check && failed ? 1 : 0;
+}
+
 int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
@@ -595,6 +713,7 @@ int run_repair(const std::vector<std::string>& args)
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
+  if(o.tiles > 0) return run_tiled_repair(o);
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
