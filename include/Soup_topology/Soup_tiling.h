@@ -94,6 +94,16 @@ public:
   unsigned level() const { return level_; }
   /// the halo: a tile's region is its cells grown by it
   double halo() const { return halo_; }
+  /// the same cut with another halo (finite, non-negative).
+  /// \throws Invalid_input for a bad halo
+  Tile_plan with_halo(double halo) const
+  {
+    if(!(halo >= 0 && halo <= std::numeric_limits<double>::max()))
+      throw Invalid_input("Tile_plan::with_halo: the halo must be finite and non-negative");
+    Tile_plan plan = *this;
+    plan.halo_ = halo;
+    return plan;
+  }
   /// the corner of the cube with the smallest coordinates
   const Point& origin() const { return origin_; }
   /// the side of the cube
@@ -142,6 +152,14 @@ public:
   template <typename OutputIterator>
   OutputIterator tiles_meeting(const Tile_corners& c, OutputIterator out, std::size_t cell_limit = 512) const
   {
+    std::vector<std::size_t> tiles;
+    collect_tiles_meeting(c, tiles, cell_limit);
+    return std::copy(tiles.begin(), tiles.end(), out);
+  }
+
+  /// `tiles_meeting()` into `tiles` (cleared first), whose storage a caller reuses.
+  void collect_tiles_meeting(const Tile_corners& c, std::vector<std::size_t>& tiles, std::size_t cell_limit = 512) const
+  {
     std::array<std::uint64_t, 3> lo, hi;
     for(std::size_t i = 0; i < 3; ++i) {
       const double a = std::min({c[0][i], c[1][i], c[2][i]}), b = std::max({c[0][i], c[1][i], c[2][i]});
@@ -150,7 +168,7 @@ public:
       hi[i] = cell_address(b + grow, i);
     }
     const std::uint64_t cells = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
-    std::vector<std::size_t> tiles;
+    tiles.clear();
     if(cells <= cell_limit) {
       for(std::uint64_t x = lo[0]; x <= hi[0]; ++x)
         for(std::uint64_t y = lo[1]; y <= hi[1]; ++y)
@@ -167,34 +185,50 @@ public:
             tiles.push_back(t);
             break;
           }
-    return std::copy(tiles.begin(), tiles.end(), out);
   }
 
-  /// an upper bound on the distance from `p` to the cells of tile `t`: 0 if `p` lies in one of
-  /// them, otherwise the distance to the nearest aligned block of the tile's range, plus a margin
-  /// that covers the rounding of the cells' bounds. A point within `halo - distance_to_tile(p, t)`
-  /// of `p` is within `halo` of the tile's cells: that is the depth of `p` in the tile's region,
-  /// as the tiled repair reads it.
-  double distance_to_tile(const Point& p, std::size_t t) const
+  /// the boxes of the aligned blocks of tile `t`'s cells, `{xmin, ymin, zmin, xmax, ymax, zmax}`
+  /// each (their union is the tile's cells, up to the rounding of the cells' bounds).
+  std::vector<std::array<double, 6>> block_boxes(std::size_t t) const
   {
-    if(tile_of_cell(cell_of(p)) == t) return 0;
     const double cell_side = side_ / std::ldexp(1.0, int(level_));
-    double best = std::numeric_limits<double>::infinity();
+    std::vector<std::array<double, 6>> boxes;
     for(std::size_t b = block_begin_[t]; b != block_begin_[t + 1]; ++b) {
       const std::uint64_t corner[3] = {internal::gather_every_third(blocks_[b].first >> 2),
                                        internal::gather_every_third(blocks_[b].first >> 1),
                                        internal::gather_every_third(blocks_[b].first)};
-      const double width = double(std::uint64_t(1) << blocks_[b].size_level);
+      const double width = double(std::uint64_t(1) << blocks_[b].size_level) * cell_side;
+      std::array<double, 6> box;
+      for(std::size_t i = 0; i < 3; ++i) {
+        box[i] = origin_[i] + double(corner[i]) * cell_side;
+        box[i + 3] = box[i] + width;
+      }
+      boxes.push_back(box);
+    }
+    return boxes;
+  }
+
+  /// an upper bound on the distance from `p` to the cells of tile `t`: 0 if `p` lies in one of
+  /// them, otherwise the distance to the nearest of the tile's `block_boxes()` (given as `boxes`,
+  /// computed once per tile), plus a margin that covers the rounding of the cells' bounds. A
+  /// point within `halo - distance_to_tile(p, t, boxes)` of `p` is within `halo` of the tile's
+  /// cells: that is the depth of `p` in the tile's region, as the tiled repair reads it.
+  double distance_to_tile(const Point& p, std::size_t t, const std::vector<std::array<double, 6>>& boxes) const
+  {
+    if(tile_of_cell(cell_of(p)) == t) return 0;
+    double best = std::numeric_limits<double>::infinity();
+    for(const std::array<double, 6>& box : boxes) {
       double d2 = 0;
       for(std::size_t i = 0; i < 3; ++i) {
-        const double lo = origin_[i] + double(corner[i]) * cell_side, hi = lo + width * cell_side;
-        const double d = p[i] < lo ? lo - p[i] : (p[i] > hi ? p[i] - hi : 0.0);
+        const double d = p[i] < box[i] ? box[i] - p[i] : (p[i] > box[i + 3] ? p[i] - box[i + 3] : 0.0);
         d2 += d * d;
       }
       best = std::min(best, d2);
     }
     return std::sqrt(best) * (1 + 1e-12) + 4 * margin_;
   }
+  /// `distance_to_tile(p, t, block_boxes(t))`.
+  double distance_to_tile(const Point& p, std::size_t t) const { return distance_to_tile(p, t, block_boxes(t)); }
 
   /// `true` if the triangle with corners `c` may meet the cells of tile `t` grown by `halo` (a
   /// superset, as `tiles_meeting()`, for a halo other than the plan's).
@@ -489,8 +523,7 @@ Tile_files write_tile_files(const TriangleSource& source, const Tile_plan& plan,
   source.for_each([&](const Tile_corners& c, std::uint64_t index) {
     ++n;
     const std::size_t owner = plan.owner(c);
-    meeting.clear();
-    plan.tiles_meeting(c, std::back_inserter(meeting));
+    plan.collect_tiles_meeting(c, meeting);
     for(std::size_t t : meeting) {
       const std::uint64_t owned = t == owner ? 1 : 0;
       (owned ? out.owned : out.halo)[t] += 1;

@@ -191,9 +191,11 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   // The depth of a point: the region holds every point within it. A region that holds every cell
   // holds the whole soup (no triangle leaves the cube): nothing is shallow there.
   std::vector<double> depth(points.size(), std::numeric_limits<double>::infinity());
-  if(!plan.holds_every_cell(tile))
+  if(!plan.holds_every_cell(tile)) {
+    const std::vector<std::array<double, 6>> boxes = plan.block_boxes(tile);
     for(std::size_t v = 0; v < points.size(); ++v)
-      depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile);
+      depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile, boxes);
+  }
   Tile_taint<Kernel> taint(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
   Default_snap_visitor visitor;
   steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, taint);
@@ -242,7 +244,8 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
 /// \tparam ConcurrencyTag passed on to the steps of each tile's repair (the tiles run one after
 ///         the other)
 /// \tparam TriangleSource as for `plan_tiles()`: `Soup_triangle_source`, `Binary_STL_source`, ...
-/// \param source the soup, streamed four times (plan, spill) and once more per repeated tile
+/// \param source the soup, streamed three times (the plan, the spill) and once more per run of a
+///        tile repaired again
 /// \param number_of_tiles at least 1
 /// \param folder an existing folder for the spill files
 /// \param points the output points, sorted
@@ -285,12 +288,12 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   // The halo of the first runs. The taint of a region starts at its edge, where the stars are cut,
   // spreads by about one star in the first weld, and further only through decisions taken near
   // tainted points (the design page): four mean edges cover the jittered seams measured. The
-  // check grows it where that is not enough. The mean edge length comes from a first stream.
+  // check grows it where that is not enough. The mean edge length comes with the plan.
   Tile_plan plan = plan_tiles(source, number_of_tiles, 0);
   const double default_halo = 4 * tolerance + 4 * plan.mean_edge_length();
   const double halo = choose_parameter(get_parameter(np, internal_np::tile_halo), default_halo > 0 ? default_halo : 1.0);
   if(!(halo > 0) || !std::isfinite(halo)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
-  plan = plan_tiles(source, number_of_tiles, halo);
+  plan = plan.with_halo(halo);
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
   report.tiles = plan.number_of_tiles();
