@@ -834,6 +834,51 @@ TEST_F(HostileInput, Issue21FailedStandardOutputIsAnError)
   EXPECT_CONTAINS(r.first, "cannot write to standard output");
 }
 
+// `repair --tiles N` on the real files and on hostile ones (in the sanitizer build too): a real
+// mesh gives the triangles of the repair in memory; a streamed STL with a corner that is not a
+// number, an empty one and one triangle are handled; bad counts of tiles and a relative tolerance
+// are refused, leaving OUT as it was.
+TEST_F(HostileInput, TiledRepair)
+{
+  const std::string pig = soup_test::data_file("cgal_repair/pig.stl.xz");
+  const soup_test::Bounded_run whole = run({"repair", pig, "-o", output, "--tolerance", "0.3", "--json"});
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  for(const std::string tiles : {"1", "3", "16"}) {
+    const soup_test::Bounded_run r = run({"repair", pig, "-o", output, "--tolerance", "0.3", "--json", "--tiles", tiles});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(soup_test::json_integer(r.out, "tiles"), std::stoll(tiles));
+    for(const char* key : {"output_triangles", "output_vertices", "border_edges", "components"})
+      EXPECT_EQ(soup_test::json_integer(r.out, key), soup_test::json_integer(whole.out, key)) << key << ", " << tiles << " tiles";
+  }
+  std::string nan(80, '\0');
+  const std::uint32_t one = 1;
+  nan.append(reinterpret_cast<const char*>(&one), 4);
+  float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+  facet[6] = std::numeric_limits<float>::quiet_NaN();
+  nan.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  nan.append(2, '\0');
+  expect_refused_unchanged({"repair", write_file(folder, "nan.stl", nan), "-o", output, "--tolerance", "0.1", "--tiles", "2"},
+                           "triangle 0 has a corner that is not finite");
+  std::string empty(80, '\0');
+  empty.append(4, '\0');
+  soup_test::Bounded_run r = run({"repair", write_file(folder, "empty.stl", empty), "-o", output, "--tolerance", "0.1",
+                                  "--tiles", "2", "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "output_triangles"), 0);
+  facet[6] = 1;
+  std::string single = nan.substr(0, 84);
+  single.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  single.append(2, '\0');
+  r = run({"repair", write_file(folder, "one.stl", single), "-o", output, "--tolerance", "0.1", "--tiles", "4", "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(soup_test::json_integer(r.out, "output_triangles"), 1);
+  expect_refused_unchanged({"repair", input, "-o", output, "--tolerance", "0.1", "--tiles", "0"}, "--tiles takes a number");
+  expect_refused_unchanged({"repair", input, "-o", output, "--tolerance", "0.1", "--tiles", "5000"}, "--tiles takes a number");
+  expect_refused_unchanged({"repair", input, "-o", output, "--relative-tolerance", "0.1", "--tiles", "2"},
+                           "--tiles needs an absolute --tolerance");
+  EXPECT_TRUE(temporaries_in(folder).empty());
+}
+
 TEST_F(HostileInput, Issue21SubnormalTolerance)
 {
   const soup_test::Bounded_run r = run({"repair", input, "-o", output, "--tolerance", "1e-320", "--json"});
