@@ -607,6 +607,36 @@ void write_repair_outputs(const Repair_options& o, const std::vector<Point>& poi
   if(report_output) report_output->commit();
 }
 
+// What is written: repeated triangles left out, components oriented, non-manifold vertices and
+// edges separated by duplicated points; its statistics (the report's counts) and, when asked,
+// its self-intersections.
+struct Written_soup
+{
+  ST::Orientation_report orientation;
+  ST::Soup_statistics statistics;
+  std::optional<std::size_t> intersecting;
+
+  Written_soup(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles, const Progress& progress)
+    : orientation(ST::orient_triangle_soup<Concurrency>(points, triangles,
+                                                         ST::parameters::orientation_policy(o.orientation_policy))),
+      statistics(ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency())))
+  {
+    progress("oriented the soup");
+    if(o.self_intersections) {
+      intersecting = count_self_intersecting_pairs(points, triangles);
+      progress("counted self-intersections");
+    }
+  }
+  // the exit code: 1 when `--check` finds the written soup not closed, not manifold or
+  // self-intersecting, else 0
+  int exit_code(const Repair_options& o) const
+  {
+    const bool failed = !statistics.closed || statistics.non_manifold_edges > 0 || statistics.non_manifold_vertices > 0 ||
+                        (intersecting && *intersecting > 0);
+    return o.check && failed ? 1 : 0;
+  }
+};
+
 // `true` if `file` is a binary STL whose size matches its facet count (the tiling streams it).
 bool is_binary_stl(const std::string& file)
 {
@@ -668,20 +698,15 @@ int run_tiled_repair(const Repair_options& o)
   }
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
-  const ST::Orientation_report orientation =
-    ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
-  const ST::Soup_statistics s =
-    ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
-  std::optional<std::size_t> intersecting;
-  if(o.self_intersections) intersecting = count_self_intersecting_pairs(points, triangles);
+  const Written_soup written(o, points, triangles, progress);
   Report rep;
   rep.add_string("input", o.in);
   rep.add_string("output", o.out);
   rep.add_string("format", format);
   rep.add("input_triangles", t.input_triangles);
   rep.add("tolerance", t.tolerance);
-  add_statistics(rep, s, 0);
-  if(intersecting) rep.add("self_intersecting_pairs", *intersecting);
+  add_statistics(rep, written.statistics, 0);
+  if(written.intersecting) rep.add("self_intersecting_pairs", *written.intersecting);
   rep.add("soup_vertices", t.output_points);
   rep.add("soup_triangles", t.output_triangles);
   rep.add("tiles", t.tiles);
@@ -694,16 +719,14 @@ int run_tiled_repair(const Repair_options& o)
   rep.add("halo_triangles", t.halo_triangles);
   rep.add("whole_soup", t.whole_soup);
   if(t.whole_soup) rep.add_string("whole_soup_reason", t.whole_soup_reason);
-  rep.add("duplicate_triangles_removed", orientation.duplicate_triangles);
-  rep.add("orientation_flips", orientation.orientation_flips);
-  rep.add("duplicated_points", orientation.duplicated_points);
-  rep.add("output_vertices", s.vertices);
-  rep.add("output_triangles", s.triangles);
+  rep.add("duplicate_triangles_removed", written.orientation.duplicate_triangles);
+  rep.add("orientation_flips", written.orientation.orientation_flips);
+  rep.add("duplicated_points", written.orientation.duplicated_points);
+  rep.add("output_vertices", written.statistics.vertices);
+  rep.add("output_triangles", written.statistics.triangles);
   write_repair_outputs(o, points, triangles, rep, progress);
   print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
-  const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
-                      (intersecting && *intersecting > 0);
-  return o.check && failed ? 1 : 0;
+  return written.exit_code(o);
 }
 
 int run_repair(const std::vector<std::string>& args)
@@ -727,25 +750,13 @@ int run_repair(const std::vector<std::string>& args)
                                                           : reconstruct(o, points, triangles, html_input.sites);
   progress("repaired the soup");
 
-  // What is written: repeated triangles left out, components oriented, non-manifold vertices
-  // and edges separated by duplicated points. The report's statistics describe this soup.
-  const ST::Orientation_report orientation =
-    ST::orient_triangle_soup<Concurrency>(points, triangles, ST::parameters::orientation_policy(o.orientation_policy));
-  const ST::Soup_statistics s =
-    ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
-  progress("oriented the soup");
-  std::optional<std::size_t> intersecting;
-  if(o.self_intersections) {
-    intersecting = count_self_intersecting_pairs(points, triangles);
-    progress("counted self-intersections");
-  }
-  const Report rep = repair_report(o, read, r, orientation, s, intersecting);
+  // The report's statistics describe the soup written.
+  const Written_soup written(o, points, triangles, progress);
+  const Report rep = repair_report(o, read, r, written.orientation, written.statistics, written.intersecting);
   write_repair_outputs(o, points, triangles, rep, progress);
   if(!o.html_file.empty()) tool::write_repair_html(o.html_file, o.in, html_input, points, triangles, r, rep.json());
   print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
-  const bool failed = !s.closed || s.non_manifold_edges > 0 || s.non_manifold_vertices > 0 ||
-                      (intersecting && *intersecting > 0);
-  return o.check && failed ? 1 : 0;
+  return written.exit_code(o);
 }
 
 // `gaps`: the options of the analysis are read by tool::run_gaps(), `--threads N` here.
