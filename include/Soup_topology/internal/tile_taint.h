@@ -47,13 +47,17 @@ namespace internal {
 ///   `Small_features::COLLAPSE` a unit also joins the corners of the triangles around the members
 ///   of a component that holds a corner of a triangle with an edge at most twice the tolerance
 ///   (the coverage test of a collapse reads them).
-/// - **before a split**: a vertex is uncertain when it is shallow, in the band, or within the
-///   tolerance of an edge that may differ. A triangle's split is uncertified when the triangle has
-///   a tainted corner; or when one of its border edges may have a vertex within the tolerance that
-///   the region misses (the edge's depth bound is at most twice the tolerance) or has an uncertain
-///   vertex within the tolerance; or when an edge it shares with a triangle with a tainted corner
-///   (its border status may differ) has a vertex other than its ends within the tolerance. Its
-///   corners and those vertices are tainted.
+/// - **before a split**: a vertex is uncertain when it is shallow, in the band, or within twice
+///   the tolerance of an edge of a triangle with a tainted corner (the whole soup's edge may lie a
+///   tolerance away). The split of a triangle without a tainted corner is uncertified when one of
+///   its border edges may have a vertex within the tolerance that the region misses (the edge's
+///   depth bound is at most twice the tolerance) or has an uncertain vertex other than the
+///   triangle's corners within the tolerance; the split of a triangle with a tainted corner, or
+///   along an edge it shares with one (whose border status may differ), when a vertex other than
+///   its corners lies within twice the tolerance of that edge. An uncertified split taints those
+///   vertices (every triangle a split makes holds one) and the triangle's corners unless one is
+///   tainted already. Points merged away are left out unless tainted (untainted, they are merged
+///   away in the whole soup too).
 ///
 /// `depth[v]` is a lower bound on the distance from point `v` to the outside of the region (it
 /// may be negative). Every test compares distances with the tolerance grown by a relative 1e-9:
