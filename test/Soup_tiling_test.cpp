@@ -251,6 +251,35 @@ TEST(SoupTiling, SpillFilesOfAStreamedBinarySTL)
   EXPECT_EQ(records, pairs);
   EXPECT_GT(records, triangles.size()); // the halos hold copies
 
+  // Only the tiles wanted, with a larger halo: their files hold what a spill of every tile with
+  // that halo holds; the others have no file.
+  const ST::Tile_plan wider = plan.with_halo(0.05);
+  const std::string all_folder = folder + "/all", some_folder = folder + "/some";
+  std::filesystem::create_directories(all_folder);
+  std::filesystem::create_directories(some_folder);
+  const ST::Tile_files all = ST::write_tile_files(source, wider, all_folder);
+  std::vector<char> wanted(8, 0);
+  wanted[2] = wanted[5] = 1;
+  const ST::Tile_files some = ST::write_tile_files(source, wider, some_folder, &wanted);
+  for(std::size_t t = 0; t < 8; ++t) {
+    if(!wanted[t]) {
+      EXPECT_TRUE(some.files[t].empty());
+      EXPECT_FALSE(std::filesystem::exists(ST::internal::tile_file_name(some_folder, t)));
+      continue;
+    }
+    const std::vector<ST::Tile_triangle> a = ST::read_tile_file(all.files[t]), b = ST::read_tile_file(some.files[t]);
+    ASSERT_EQ(a.size(), b.size());
+    for(std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].corners, b[k].corners);
+      EXPECT_EQ(a[k].index, b[k].index);
+      EXPECT_EQ(a[k].owned, b[k].owned);
+    }
+    EXPECT_EQ(some.owned[t], all.owned[t]);
+    EXPECT_EQ(some.halo[t], all.halo[t]);
+    EXPECT_GT(all.halo[t], files.halo[t]); // the larger halo holds more
+  }
+  EXPECT_THROW(ST::write_tile_files(source, wider, some_folder, &(wanted = std::vector<char>(3, 1))), ST::Invalid_input);
+
   // a damaged file is refused
   std::filesystem::resize_file(files.files[0], std::filesystem::file_size(files.files[0]) - 1);
   EXPECT_THROW(ST::read_tile_file(files.files[0]), ST::IO::Read_error);

@@ -230,21 +230,6 @@ public:
   /// `distance_to_tile(p, t, block_boxes(t))`.
   double distance_to_tile(const Point& p, std::size_t t) const { return distance_to_tile(p, t, block_boxes(t)); }
 
-  /// `true` if the triangle with corners `c` may meet the cells of tile `t` grown by `halo` (a
-  /// superset, as `tiles_meeting()`, for a halo other than the plan's).
-  bool may_meet_region(const Tile_corners& c, std::size_t t, double halo) const
-  {
-    std::array<std::uint64_t, 3> lo, hi;
-    for(std::size_t i = 0; i < 3; ++i) {
-      const double a = std::min({c[0][i], c[1][i], c[2][i]}), b = std::max({c[0][i], c[1][i], c[2][i]});
-      lo[i] = cell_address(a - (halo + margin_), i);
-      hi[i] = cell_address(b + (halo + margin_), i);
-    }
-    for(std::size_t b = block_begin_[t]; b != block_begin_[t + 1]; ++b)
-      if(block_meets(blocks_[b], lo, hi)) return true;
-    return false;
-  }
-
 private:
   template <class TriangleSource>
   friend Tile_plan plan_tiles(const TriangleSource& source, std::size_t number_of_tiles, double halo, unsigned level);
@@ -463,7 +448,8 @@ struct Tile_triangle
 };
 
 /// \ingroup PkgSoupTopologyTiling
-/// what `write_tile_files()` wrote: per tile, its file and its triangles owned and in the halo.
+/// what `write_tile_files()` wrote: per tile, its file (empty if not written) and its triangles
+/// owned and in the halo.
 struct Tile_files
 {
   std::vector<std::string> files;
@@ -493,21 +479,32 @@ inline std::string tile_file_name(const std::string& folder, std::size_t t)
 /// of 88 bytes per triangle (9 coordinates, the index, the owned flag and padding), in the byte
 /// order of the machine: spill files are for the machines of one run. All the files are open at
 /// once: the number of tiles is bounded by the process's open files.
+///
+/// With `wanted` (one flag per tile), only the files of the tiles flagged are written; the others
+/// have an empty name and no count in the result (the tiled repair spills the tiles it repairs
+/// again this way, with a larger halo).
 /// \throws IO::Write_error if a file cannot be written; Invalid_input if the source does not give
-/// the triangles the plan was made from (another count)
+/// the triangles the plan was made from (another count), or `wanted` has another size than the
+/// number of tiles
 template <class TriangleSource>
-Tile_files write_tile_files(const TriangleSource& source, const Tile_plan& plan, const std::string& folder)
+Tile_files write_tile_files(const TriangleSource& source, const Tile_plan& plan, const std::string& folder,
+                            const std::vector<char>* wanted = nullptr)
 {
   const std::size_t tiles = plan.number_of_tiles();
+  if(wanted != nullptr && wanted->size() != tiles)
+    throw Invalid_input("write_tile_files: the tiles wanted do not match the plan");
+  const auto is_wanted = [&](std::size_t t) { return wanted == nullptr || (*wanted)[t] != 0; };
   Tile_files out;
   out.owned.assign(tiles, 0);
   out.halo.assign(tiles, 0);
-  std::vector<std::unique_ptr<std::ofstream>> streams;
+  std::vector<std::unique_ptr<std::ofstream>> streams(tiles);
   std::vector<std::string> buffers(tiles);
+  out.files.resize(tiles);
   for(std::size_t t = 0; t < tiles; ++t) {
-    out.files.push_back(internal::tile_file_name(folder, t));
-    streams.push_back(std::make_unique<std::ofstream>(out.files.back(), std::ios::binary | std::ios::trunc));
-    if(!*streams.back()) throw IO::Write_error(out.files.back() + ": cannot open for writing");
+    if(!is_wanted(t)) continue;
+    out.files[t] = internal::tile_file_name(folder, t);
+    streams[t] = std::make_unique<std::ofstream>(out.files[t], std::ios::binary | std::ios::trunc);
+    if(!*streams[t]) throw IO::Write_error(out.files[t] + ": cannot open for writing");
     buffers[t].append(internal::tile_file_magic, 8);
     const std::uint64_t head[2] = {std::uint64_t(t), std::uint64_t(tiles)};
     buffers[t].append(reinterpret_cast<const char*>(head), sizeof head);
@@ -525,6 +522,7 @@ Tile_files write_tile_files(const TriangleSource& source, const Tile_plan& plan,
     const std::size_t owner = plan.owner(c);
     plan.collect_tiles_meeting(c, meeting);
     for(std::size_t t : meeting) {
+      if(!is_wanted(t)) continue;
       const std::uint64_t owned = t == owner ? 1 : 0;
       (owned ? out.owned : out.halo)[t] += 1;
       buffers[t].append(reinterpret_cast<const char*>(c.data()), 9 * 8);
@@ -537,6 +535,7 @@ Tile_files write_tile_files(const TriangleSource& source, const Tile_plan& plan,
     throw Invalid_input("write_tile_files: the source gives " + std::to_string(n) + " triangles, the plan was made from " +
                         std::to_string(plan.number_of_triangles()));
   for(std::size_t t = 0; t < tiles; ++t) {
+    if(!is_wanted(t)) continue;
     flush(t, true);
     streams[t]->close();
     if(!*streams[t]) throw IO::Write_error(out.files[t] + ": write failed");

@@ -234,8 +234,9 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
 /// is repaired on its region (its cells grown by the halo) with the pipeline's own steps while the
 /// taint of its points is followed phase by phase (`doc/Soup_topology/Tiled_repair_design.md`);
 /// the triangles the tile owns (by the anchor of their output corners) are kept when none of their
-/// corners is tainted. Otherwise the tile is repaired again with the halo doubled, from the
-/// source, until it is clean: the output never holds a decision the region could not certify.
+/// corners is tainted. Otherwise the tile is repaired again with the halo doubled, until it is
+/// clean: the output never holds a decision the region could not certify. The tiles to repair
+/// again are spilled together, in one stream of the source per round of doubling.
 /// A region that grows past the bounding cube is the whole soup, which taints nothing.
 ///
 /// Memory: one tile's region and its repair, and the owned triangles of the tiles done on the
@@ -244,8 +245,8 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
 /// \tparam ConcurrencyTag passed on to the steps of each tile's repair (the tiles run one after
 ///         the other)
 /// \tparam TriangleSource as for `plan_tiles()`: `Soup_triangle_source`, `Binary_STL_source`, ...
-/// \param source the soup, streamed three times (the plan, the spill) and once more per run of a
-///        tile repaired again
+/// \param source the soup, streamed three times (the plan, the spill) and once more per round of
+///        tiles repaired again
 /// \param number_of_tiles at least 1
 /// \param folder an existing folder for the spill files
 /// \param points the output points, sorted
@@ -297,20 +298,25 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
   report.tiles = plan.number_of_tiles();
-  const Tile_files files = write_tile_files(source, plan, folder);
+  Tile_files files = write_tile_files(source, plan, folder);
   for(std::size_t h : files.halo) report.halo_triangles += h;
 
+  // Rounds: every tile to do is repaired from its spill file; the tiles with a tainted owned
+  // triangle are spilled again, together in one stream of the source, with the halo doubled.
   std::vector<internal::Soup_part> kept;
   std::vector<Tile_corners> region;
+  std::vector<std::size_t> to_do(plan.number_of_tiles());
+  for(std::size_t tile = 0; tile < to_do.size(); ++tile) to_do[tile] = tile;
+  // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
+  const double enough = 4 * (plan.side() + tolerance) + halo;
   bool whole = false;
-  for(std::size_t tile = 0; tile < plan.number_of_tiles() && !whole; ++tile) {
-    region.clear();
-    for(const Tile_triangle& t : read_tile_file(files.files[tile])) region.push_back(t.corners);
-    std::remove(files.files[tile].c_str());
-    // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
-    const double enough = 4 * (plan.side() + tolerance) + halo;
-    for(double h = halo;; h *= 2) {
-      report.largest_halo = std::max(report.largest_halo, h);
+  for(double h = halo; !to_do.empty() && !whole; h *= 2) {
+    report.largest_halo = std::max(report.largest_halo, h);
+    std::vector<std::size_t> tainted;
+    for(std::size_t tile : to_do) {
+      region.clear();
+      for(const Tile_triangle& t : read_tile_file(files.files[tile])) region.push_back(t.corners);
+      std::remove(files.files[tile].c_str());
       report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
       ++report.tile_runs;
       internal::Tile_run run =
@@ -322,19 +328,22 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
       }
       if(run.tainted_owned == 0) {
         kept.push_back(std::move(run.owned));
-        break;
+        continue;
       }
       report.discarded_triangles += run.tainted_owned;
-      if(h == halo) ++report.repeated_tiles;
-      if(h > enough) throw std::logic_error("tiled_reconstruct_topology: a region holding the whole soup is tainted");
-      region.clear();
-      source.for_each([&](const Tile_corners& c, std::uint64_t) {
-        if(plan.may_meet_region(c, tile, 2 * h)) region.push_back(c);
-      });
+      tainted.push_back(tile);
     }
+    if(whole || tainted.empty()) break;
+    if(h == halo) report.repeated_tiles = tainted.size();
+    if(h > enough) throw std::logic_error("tiled_reconstruct_topology: a region holding the whole soup is tainted");
+    std::vector<char> wanted(plan.number_of_tiles(), 0);
+    for(std::size_t tile : tainted) wanted[tile] = 1;
+    files = write_tile_files(source, plan.with_halo(2 * h), folder, &wanted);
+    to_do.swap(tainted);
   }
   if(whole) {
-    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(files.files[tile].c_str());
+    for(const std::string& file : files.files)
+      if(!file.empty()) std::remove(file.c_str());
     // One tile holding everything, deep enough that nothing is tainted.
     Tile_plan one = plan_tiles(source, 1, 0);
     region.clear();
