@@ -204,6 +204,36 @@ TEST(TiledReconstruction, ChainLongerThanTheHaloIsRepairedAgain)
   }
 }
 
+// A crowd: 6,000 small triangles whose corners all lie within a tenth of the tolerance of each
+// other, beside a large triangle. Following the taint there would read the whole crowd at each of
+// its points (36 million answers a phase, minutes): the taint gives up within its budget, and the
+// soup is repaired whole, as in memory.
+TEST(TiledReconstruction, CrowdWithinTheToleranceIsRepairedWhole)
+{
+  Soup soup;
+  const double t = 1e-3;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> offset(0, 0.1 * t);
+  for(std::size_t i = 0; i < 6000; ++i) {
+    const std::size_t first = soup.points.size();
+    for(int k = 0; k < 3; ++k) soup.points.emplace_back(0.5 + offset(random), 0.5 + offset(random), 0.5 + offset(random));
+    soup.triangles.push_back({first, first + 1, first + 2});
+  }
+  const std::size_t first = soup.points.size();
+  soup.points.emplace_back(0, 0, 0);
+  soup.points.emplace_back(1, 0, 0);
+  soup.points.emplace_back(0, 1, 0);
+  soup.triangles.push_back({first, first + 1, first + 2});
+  for(ST::Small_features policy : {ST::Small_features::COLLAPSE, ST::Small_features::REFUSE}) {
+    const auto np = ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(t));
+    const Canonical expected = in_memory(soup, np);
+    ST::Tiled_reconstruction_report report;
+    EXPECT_TRUE(same(expected, tiled(soup, 4, np, &report)));
+    EXPECT_TRUE(report.whole_soup);
+    EXPECT_NE(report.whole_soup_reason.find("crowd"), std::string::npos) << report.whole_soup_reason;
+  }
+}
+
 // Two strips along x meet at a seam that every tile boundary crosses: the upper strip's border
 // has 200 edges, the lower strip's 400, 0.3 t below it and shifted along it by up to half the
 // tolerance: welds and T-junctions at every depth of every region's edge, for a halo of twice the

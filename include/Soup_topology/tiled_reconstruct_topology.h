@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -149,6 +150,7 @@ struct Tile_run
   Soup_part owned;                     // the owned triangles, untainted, on the points they use
   std::size_t tainted_owned = 0;       // owned triangles with a tainted corner
   bool degenerate_under_collapse = false; // a degenerate triangle under COLLAPSE: not tiled
+  bool crowded = false;                // the taint exceeded its budget (`Tile_taint::crowded()`): not tiled
 };
 
 /// repairs the region of tile `tile` given by the corners of its triangles, with the halo `halo`,
@@ -196,16 +198,28 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
     for(std::size_t v = 0; v < points.size(); ++v)
       depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile, boxes);
   }
-  Tile_taint<Kernel> taint(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
   Default_snap_visitor visitor;
-  steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, taint);
+  // The whole soup taints nothing (every point is deeper than the tolerance, no tainted point to
+  // start from): it is repaired without the observer.
+  std::optional<Tile_taint<Kernel>> taint;
+  if(whole_soup) {
+    steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor);
+  } else {
+    taint.emplace(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
+    steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, *taint);
+    if(taint->crowded()) {
+      run.crowded = true;
+      return run;
+    }
+  }
+  const auto tainted = [&](std::uint32_t v) { return taint && taint->tainted(v); };
   constexpr std::uint32_t unused = static_cast<std::uint32_t>(-1);
   std::vector<std::uint32_t> local(points.size(), unused);
   for(const auto& t : triangles) {
     Tile_corners c;
     for(std::size_t k = 0; k < 3; ++k) c[k] = {{points[t[k]].x(), points[t[k]].y(), points[t[k]].z()}};
     if(plan.owner(c) != tile) continue;
-    if(taint.tainted(t[0]) || taint.tainted(t[1]) || taint.tainted(t[2])) {
+    if(tainted(t[0]) || tainted(t[1]) || tainted(t[2])) {
       ++run.tainted_owned;
       continue;
     }
@@ -324,6 +338,13 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
       if(run.degenerate_under_collapse) {
         whole = true;
         report.whole_soup_reason = "a degenerate triangle under Small_features::COLLAPSE (its flips are not tiled)";
+        break;
+      }
+      if(run.crowded) {
+        whole = true;
+        report.whole_soup_reason = "a crowd of points within the tolerance of each other (more than " +
+                                   std::to_string(internal::Tile_taint<CGAL::Epick>::crowd_budget) +
+                                   " points read a point of a tile in a phase of its taint)";
         break;
       }
       if(run.tainted_owned == 0) {

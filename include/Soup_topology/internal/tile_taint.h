@@ -75,7 +75,7 @@ public:
              const Kernel& kernel)
     : tree_(points, CGAL::Identity_property_map<Point>(), kernel), depth_(std::move(depth)), tolerance_(tolerance),
       radius_(FT(tolerance * (1 + 1e-9))), twice_radius_(FT(2 * tolerance * (1 + 1e-9))), collapse_(collapse),
-      tainted_(points.size(), 0)
+      tainted_(points.size(), 0), budget_(crowd_budget * points.size() + 65536)
   {}
 
   /// `true` if the state of point `v` may differ from the whole soup's.
@@ -83,9 +83,19 @@ public:
   /// marks point `v` as tainted.
   void taint(size_type v) { tainted_[v] = 1; }
 
+  /// The work of a phase is counted in points read from the answers of the queries (and in
+  /// triangles read around non-manifold edges). Past `crowd_budget` a point of the region, the
+  /// region is crowded (e.g. thousands of points within the tolerance of each other): the taint
+  /// stops following the phases, which would cost the square of the crowd, and reports it here.
+  /// The caller must then repair the soup without tiles.
+  static constexpr std::size_t crowd_budget = 64;
+  /// `true` if a phase exceeded the budget of work: the taint is then incomplete.
+  bool crowded() const { return crowded_; }
+
   template <class Points>
   void before_weld(const Points& points, const Adjacency_tables& tables)
   {
+    if(!start_phase()) return;
     const std::vector<char> band = star_band(tables);
     std::vector<char> candidate(points.size(), 0);
     for(size_type t = 0; t < tables.number_of_triangles(); ++t)
@@ -113,9 +123,11 @@ public:
       if(!band[x]) continue;
       near.clear();
       tree_.vertices_near_point(points[x], tainted_[x] ? twice_radius_ : radius_, std::back_inserter(near));
+      if(!spend(near.size())) return;
       for(std::size_t y : near) reach(static_cast<size_type>(y));
     }
     const std::vector<char> collapsing = collapse_ ? members_near_collapses(points, tables, candidate) : std::vector<char>();
+    if(crowded_) return;
     // Their units: the tolerance graph, the triangles that are not rigid and, under COLLAPSE,
     // the stars of the members of a component with a corner of a triangle that may collapse.
     while(!stack.empty()) {
@@ -123,6 +135,7 @@ public:
       stack.pop_back();
       near.clear();
       tree_.vertices_near_point(points[v], radius_, std::back_inserter(near));
+      if(!spend(near.size())) return;
       for(std::size_t y : near) reach(static_cast<size_type>(y));
       for(size_type t : tables.triangles_around_vertex(v)) {
         const Adjacency_tables::Triangle& tr = tables.triangle(t);
@@ -142,6 +155,7 @@ public:
   template <class Points>
   void before_split(const Points& points, const Adjacency_tables& tables)
   {
+    if(!start_phase()) return;
     const std::vector<char> band = star_band(tables);
     const auto differs = [&](size_type t) {
       const Adjacency_tables::Triangle& tr = tables.triangle(t);
@@ -169,6 +183,7 @@ public:
         cached.erase(std::remove_if(cached.begin() + std::ptrdiff_t(before), cached.end(),
                                     [&](std::size_t y) { return !is_vertex(y); }),
                      cached.end());
+        if(!spend(cached.size() - before)) return;
         for(std::size_t k = before; k < cached.size(); ++k) dirty[cached[k]] = 1;
       }
     }
@@ -204,6 +219,7 @@ public:
       if(n != Adjacency_tables::non_manifold_edge) return differs(n);
       around.clear();
       tables.triangles_around_edge(t, i, std::back_inserter(around));
+      spend(around.size());
       return std::any_of(around.begin(), around.end(), differs);
     };
     std::vector<size_type> to_taint;
@@ -219,6 +235,7 @@ public:
         if(!border && !tainted_corner && !(band[a] && band[b] && edge_may_differ(t, i))) continue;
         const std::size_t before = found.size();
         near_edge(t, i, tainted_corner || !border, found);
+        if(!spend(found.size() - before)) return;
         if(border) {
           const double length = std::sqrt(CGAL::to_double(CGAL::squared_distance(points[a], points[b])));
           if((depth_[a] + depth_[b] - length) / 2 <= 2 * tolerance_ * (1 + 1e-9)) uncertain = true;
@@ -249,6 +266,20 @@ public:
   {}
 
 private:
+  // Starts the count of a phase's work; `false` once the region is crowded.
+  bool start_phase()
+  {
+    work_ = 0;
+    return !crowded_;
+  }
+  // Counts `n` more points read; `false` (and crowded) past the budget.
+  bool spend(std::size_t n)
+  {
+    work_ += n;
+    if(work_ > budget_) crowded_ = true;
+    return !crowded_;
+  }
+
   // The star band: the tainted points and the corners of the triangles with a tainted corner.
   std::vector<char> star_band(const Adjacency_tables& tables) const
   {
@@ -262,7 +293,7 @@ private:
   // of a triangle with an edge at most twice the tolerance (one that may collapse).
   template <class Points>
   std::vector<char> members_near_collapses(const Points& points, const Adjacency_tables& tables,
-                                           const std::vector<char>& candidate) const
+                                           const std::vector<char>& candidate)
   {
     std::vector<char> flagged(points.size(), 0);
     std::vector<size_type> stack;
@@ -281,6 +312,7 @@ private:
       stack.pop_back();
       near.clear();
       tree_.vertices_near_point(points[v], radius_, std::back_inserter(near));
+      if(!spend(near.size())) break;
       for(std::size_t y : near)
         if(candidate[y] && !flagged[y]) {
           flagged[y] = 1;
@@ -307,6 +339,8 @@ private:
   FT radius_, twice_radius_;
   bool collapse_;
   std::vector<char> tainted_;
+  std::size_t budget_, work_ = 0;
+  bool crowded_ = false;
 };
 
 } // namespace internal
