@@ -143,6 +143,49 @@ TEST(SoupTiling, ShuffledSoupGivesTheSamePlan)
   }
 }
 
+// A plan sent as bytes to the other processes of a team is the same plan: the same cells, owners,
+// tiles met, boxes and distances; a truncated or altered plan is refused.
+TEST(SoupTiling, PlanAsBytesIsTheSamePlan)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  exploded_sheet(30, 1e-5, 4, points, triangles);
+  const ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(points, triangles);
+  const ST::Tile_plan plan = ST::plan_tiles(source, 7, 0.03, 5);
+  const std::vector<char> bytes = plan.to_bytes();
+  const ST::Tile_plan copy = ST::Tile_plan::from_bytes(bytes);
+  EXPECT_EQ(copy.to_bytes(), bytes);
+  ASSERT_EQ(copy.number_of_tiles(), plan.number_of_tiles());
+  EXPECT_EQ(copy.level(), plan.level());
+  EXPECT_EQ(copy.halo(), plan.halo());
+  EXPECT_EQ(copy.side(), plan.side());
+  EXPECT_EQ(copy.origin(), plan.origin());
+  EXPECT_EQ(copy.mean_edge_length(), plan.mean_edge_length());
+  EXPECT_EQ(copy.number_of_triangles(), plan.number_of_triangles());
+  for(std::size_t t = 0; t < plan.number_of_tiles(); ++t) {
+    EXPECT_EQ(copy.first_cell(t), plan.first_cell(t));
+    EXPECT_EQ(copy.owned_triangles(t), plan.owned_triangles(t));
+    EXPECT_EQ(copy.block_boxes(t), plan.block_boxes(t));
+  }
+  std::vector<std::size_t> a, b;
+  for(const Triangle& tr : triangles) {
+    const ST::Tile_corners c = corners_of(points, tr);
+    EXPECT_EQ(copy.owner(c), plan.owner(c));
+    a.clear();
+    b.clear();
+    plan.tiles_meeting(c, std::back_inserter(a));
+    copy.tiles_meeting(c, std::back_inserter(b));
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(copy.distance_to_tile(c[0], 3), plan.distance_to_tile(c[0], 3));
+  }
+  std::vector<char> truncated(bytes.begin(), bytes.end() - 8);
+  EXPECT_THROW(ST::Tile_plan::from_bytes(truncated), ST::Invalid_input);
+  std::vector<char> bad_level = bytes;
+  bad_level[0] = 9;
+  EXPECT_THROW(ST::Tile_plan::from_bytes(bad_level), ST::Invalid_input);
+  EXPECT_THROW(ST::Tile_plan::from_bytes(std::vector<char>(3)), ST::Invalid_input);
+}
+
 // Every tile with a cell within the halo of a corner of a triangle is among the tiles the
 // triangle meets, the owner always is, and a tile met has a cell within reach of the triangle's
 // box grown by the halo: checked against every cell of a coarse plan, and the answer cell by

@@ -230,6 +230,63 @@ public:
   /// `distance_to_tile(p, t, block_boxes(t))`.
   double distance_to_tile(const Point& p, std::size_t t) const { return distance_to_tile(p, t, block_boxes(t)); }
 
+  /// the plan as bytes (host byte order), for the processes of a team that share the tiles
+  /// (`tiled_reconstruct_topology()` with a team): `from_bytes(to_bytes())` is the same plan.
+  std::vector<char> to_bytes() const
+  {
+    std::vector<char> out;
+    const auto put = [&out](const void* data, std::size_t size) {
+      const char* c = static_cast<const char*>(data);
+      out.insert(out.end(), c, c + size);
+    };
+    const std::uint64_t header[4] = {level_, triangles_, first_cell_.size(), owned_.size()};
+    const double reals[7] = {origin_[0], origin_[1], origin_[2], side_, halo_, margin_, mean_edge_length_};
+    put(header, sizeof header);
+    put(reals, sizeof reals);
+    put(first_cell_.data(), 8 * first_cell_.size());
+    for(std::size_t o : owned_) {
+      const std::uint64_t v = o;
+      put(&v, 8);
+    }
+    return out;
+  }
+  /// the plan of `to_bytes()`.
+  /// \throws Invalid_input if `bytes` is not such a plan
+  static Tile_plan from_bytes(const std::vector<char>& bytes)
+  {
+    std::size_t at = 0;
+    const auto get = [&](void* data, std::size_t size) {
+      if(bytes.size() - at < size) throw Invalid_input("Tile_plan::from_bytes: truncated plan");
+      std::memcpy(data, bytes.data() + at, size);
+      at += size;
+    };
+    std::uint64_t header[4];
+    double reals[7];
+    get(header, sizeof header);
+    get(reals, sizeof reals);
+    if(header[0] < 1 || header[0] > 8 || header[2] < 2 || header[3] + 1 != header[2] ||
+       bytes.size() - at != 8 * (header[2] + header[3]))
+      throw Invalid_input("Tile_plan::from_bytes: not a plan");
+    Tile_plan plan;
+    plan.level_ = static_cast<unsigned>(header[0]);
+    plan.triangles_ = static_cast<std::size_t>(header[1]);
+    plan.origin_ = {{reals[0], reals[1], reals[2]}};
+    plan.side_ = reals[3];
+    plan.halo_ = reals[4];
+    plan.margin_ = reals[5];
+    plan.mean_edge_length_ = reals[6];
+    plan.first_cell_.resize(header[2]);
+    get(plan.first_cell_.data(), 8 * plan.first_cell_.size());
+    plan.owned_.resize(header[3]);
+    for(std::size_t& o : plan.owned_) {
+      std::uint64_t v;
+      get(&v, 8);
+      o = static_cast<std::size_t>(v);
+    }
+    plan.make_blocks();
+    return plan;
+  }
+
 private:
   template <class TriangleSource>
   friend Tile_plan plan_tiles(const TriangleSource& source, std::size_t number_of_tiles, double halo, unsigned level);
