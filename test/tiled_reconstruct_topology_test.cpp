@@ -20,9 +20,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
+#include <mutex>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 // The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
@@ -395,6 +398,127 @@ TEST(TiledReconstructionTaint, TaintSpreadsThroughDecisionsOnly)
   Taint_case near = c;
   near.points[4] = Point(7.5 + 0.25 * 10 / std::sqrt(125.0), 5 + 0.25 * 5 / std::sqrt(125.0), 0);
   EXPECT_EQ(near.tainted_after("split", {0}), (std::vector<std::size_t>{0, 1, 2, 3, 4}));
+}
+
+// A team of threads, one per "process", sharing a folder: the exchanges of the team protocol
+// (a broadcast from rank 0, a gather of every rank's values) through a barrier.
+class Thread_team_state
+{
+public:
+  explicit Thread_team_state(std::size_t size)
+    : size_(size), values_(size)
+  {}
+  std::size_t size() const { return size_; }
+  void broadcast(std::size_t rank, std::vector<char>& bytes)
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if(rank == 0) bytes_ = bytes;
+    wait_for_all(lock);
+    if(rank != 0) bytes = bytes_;
+    wait_for_all(lock);
+  }
+  std::vector<std::uint64_t> all_gather(std::size_t rank, const std::vector<std::uint64_t>& mine)
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    values_[rank] = mine;
+    wait_for_all(lock);
+    std::vector<std::uint64_t> all;
+    for(const auto& v : values_) all.insert(all.end(), v.begin(), v.end());
+    wait_for_all(lock);
+    return all;
+  }
+private:
+  void wait_for_all(std::unique_lock<std::mutex>& lock)
+  {
+    const std::size_t generation = generation_;
+    if(++arrived_ == size_) {
+      arrived_ = 0;
+      ++generation_;
+      all_arrived_.notify_all();
+    } else {
+      all_arrived_.wait(lock, [&] { return generation_ != generation; });
+    }
+  }
+  std::size_t size_, arrived_ = 0, generation_ = 0;
+  std::mutex mutex_;
+  std::condition_variable all_arrived_;
+  std::vector<char> bytes_;
+  std::vector<std::vector<std::uint64_t>> values_;
+};
+
+struct Thread_team
+{
+  Thread_team_state* state;
+  std::size_t my_rank;
+  std::size_t rank() const { return my_rank; }
+  std::size_t size() const { return state->size(); }
+  void broadcast(std::vector<char>& bytes) { state->broadcast(my_rank, bytes); }
+  std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>& v) { return state->all_gather(my_rank, v); }
+};
+
+// The tiled repair by teams of 2, 3 and 5 threads gives the single process's output and report:
+// the tiles repaired again (a first halo of twice the tolerance), a soup repaired whole (a crowd),
+// and more processes than tiles.
+TEST(TiledReconstruction, TeamsGiveTheSingleProcessResult)
+{
+  const Soup seams = jittered_seams("clean/elephant.off", 6, 1e-6, 5);
+  const double t = 1e-5 * diagonal(seams.points);
+  Soup crowd = seams;
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> offset(0, 0.1 * t);
+  const Point centre = seams.points[seams.triangles[0][0]];
+  for(std::size_t i = 0; i < 2000; ++i) {
+    const std::size_t first = crowd.points.size();
+    for(int k = 0; k < 3; ++k)
+      crowd.points.emplace_back(centre.x() + offset(random), centre.y() + offset(random), centre.z() + offset(random));
+    crowd.triangles.push_back({first, first + 1, first + 2});
+  }
+  struct Case
+  {
+    const Soup* soup;
+    std::size_t tiles;
+    bool whole;
+  };
+  for(const Case& c : {Case{&seams, 8, false}, Case{&crowd, 8, true}, Case{&seams, 2, false}}) {
+    const auto np = ST::parameters::tile_halo(2 * t, CGAL::parameters::snapping_tolerance(t));
+    ST::Tiled_reconstruction_report expected_report;
+    const Canonical expected = tiled(*c.soup, c.tiles, np, &expected_report);
+    EXPECT_EQ(expected_report.whole_soup, c.whole);
+    if(!c.whole) {
+      EXPECT_GT(expected_report.repeated_tiles, 0u);
+    }
+    const ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(c.soup->points, c.soup->triangles);
+    for(std::size_t size : {2, 3, 5}) {
+      const std::string folder = soup_test::temporary_folder("tiled_team");
+      Thread_team_state state(size);
+      std::vector<Canonical> outputs(size);
+      std::vector<ST::Tiled_reconstruction_report> reports(size);
+      std::vector<std::thread> threads;
+      for(std::size_t rank = 0; rank < size; ++rank)
+        threads.emplace_back([&, rank] {
+          Thread_team team{&state, rank};
+          reports[rank] = ST::tiled_reconstruct_topology(team, source, c.tiles, folder, outputs[rank].points,
+                                                         outputs[rank].triangles, np);
+        });
+      for(std::thread& thread : threads) thread.join();
+      EXPECT_TRUE(same(expected, outputs[0])) << size << " processes, " << c.tiles << " tiles";
+      const ST::Tiled_reconstruction_report& r = reports[0];
+      EXPECT_EQ(r.tile_runs, expected_report.tile_runs) << size;
+      EXPECT_EQ(r.repeated_tiles, expected_report.repeated_tiles) << size;
+      EXPECT_EQ(r.discarded_triangles, expected_report.discarded_triangles) << size;
+      EXPECT_EQ(r.largest_tile_triangles, expected_report.largest_tile_triangles) << size;
+      EXPECT_EQ(r.largest_halo, expected_report.largest_halo) << size;
+      EXPECT_EQ(r.halo_triangles, expected_report.halo_triangles) << size;
+      EXPECT_EQ(r.whole_soup_reason, expected_report.whole_soup_reason) << size;
+      for(std::size_t rank = 1; rank < size; ++rank) {
+        EXPECT_TRUE(outputs[rank].triangles.empty());
+        // The run of the whole soup is rank 0's alone.
+        EXPECT_EQ(reports[rank].tile_runs + (r.whole_soup ? 1 : 0), r.tile_runs);
+      }
+      EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files left in " << folder;
+      std::filesystem::remove_all(folder);
+    }
+  }
 }
 
 // The tool: `repair --tiles N` writes the mesh that `repair` writes, triangle for triangle (the

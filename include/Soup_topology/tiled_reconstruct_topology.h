@@ -27,6 +27,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -142,7 +144,63 @@ void canonical_triangle_soup(const PointRange& points_in, const TriangleRange& t
   internal::merge_in_canonical_order(parts, points, triangles);
 }
 
+/// \ingroup PkgSoupTopologyTiling
+/// \brief the team of one process: `tiled_reconstruct_topology()` without a team uses it.
+struct Single_process_team
+{
+  std::size_t rank() const { return 0; }
+  std::size_t size() const { return 1; }
+  void broadcast(std::vector<char>&) {}
+  std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>& values) { return values; }
+};
+
 namespace internal {
+
+inline std::string part_file_name(const std::string& folder, std::size_t tile)
+{
+  std::string number = std::to_string(tile);
+  if(number.size() < 5) number.insert(0, 5 - number.size(), '0');
+  return folder + "/part_" + number + ".bin";
+}
+
+constexpr char part_file_magic[8] = {'S', 'T', 'P', 'A', 'R', 'T', '1', '\0'};
+
+/// writes the kept triangles of a tile for rank 0's merge: a header (magic, the numbers of points
+/// and triangles), the points (three doubles each), the triangles (three 32-bit indices each).
+inline void write_part_file(const std::string& file, const Soup_part& part)
+{
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  const std::uint64_t sizes[2] = {part.points.size(), part.triangles.size()};
+  out.write(part_file_magic, 8);
+  out.write(reinterpret_cast<const char*>(sizes), sizeof sizes);
+  out.write(reinterpret_cast<const char*>(part.points.data()), std::streamsize(24 * part.points.size()));
+  out.write(reinterpret_cast<const char*>(part.triangles.data()), std::streamsize(12 * part.triangles.size()));
+  if(!out.flush()) throw IO::Write_error(file + ": write failed");
+}
+
+inline Soup_part read_part_file(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  char magic[8];
+  std::uint64_t sizes[2];
+  if(!in.read(magic, 8) || std::memcmp(magic, part_file_magic, 8) != 0 || !in.read(reinterpret_cast<char*>(sizes), sizeof sizes))
+    throw IO::Read_error(file + ": not a part file of a tiled repair");
+  in.seekg(0, std::ios::end);
+  const std::uint64_t size = static_cast<std::uint64_t>(in.tellg());
+  if(sizes[0] > size / 24 || sizes[1] > size / 12 || size != 24 + 24 * sizes[0] + 12 * sizes[1])
+    throw IO::Read_error(file + ": truncated part file");
+  in.seekg(24);
+  Soup_part part;
+  part.points.resize(sizes[0]);
+  part.triangles.resize(sizes[1]);
+  in.read(reinterpret_cast<char*>(part.points.data()), std::streamsize(24 * sizes[0]));
+  in.read(reinterpret_cast<char*>(part.triangles.data()), std::streamsize(12 * sizes[1]));
+  if(!in) throw IO::Read_error(file + ": read failed");
+  for(const auto& t : part.triangles)
+    for(std::uint32_t v : t)
+      if(v >= part.points.size()) throw IO::Read_error(file + ": a triangle refers to a missing point");
+  return part;
+}
 
 /// what one repair of a tile's region gives back.
 struct Tile_run
@@ -283,6 +341,36 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
                                                        std::vector<std::array<std::uint32_t, 3>>& triangles,
                                                        const NamedParameters& np = CGAL::parameters::default_values())
 {
+  Single_process_team alone;
+  return tiled_reconstruct_topology<ConcurrencyTag>(alone, source, number_of_tiles, folder, points, triangles, np);
+}
+
+/// \ingroup PkgSoupTopologyTiling
+/// \brief `tiled_reconstruct_topology()` by a team of processes that share the tiles (e.g.
+/// `Mpi_tile_team`): every process of `team` calls it with the same arguments, and the processes
+/// share one `folder` (a shared file system when they run on several machines).
+///
+/// Rank 0 plans and spills (it alone reads `source`) and sends the plan to the others. In each
+/// round, process `r` repairs the tiles at positions `r`, `r + size`, ... of the round's list, and
+/// writes the owned triangles it keeps to a part file in `folder`; the outcomes of the runs are
+/// gathered by every process, which walks them in the list's order as a single process does: the
+/// same tiles to repeat, the same report, the same output. Rank 0 spills the tiles to repeat, then
+/// merges the part files. The output and the report are rank 0's; the other processes return
+/// an empty soup and a report with the counts of the tiles only.
+///
+/// An exception on one process leaves the others waiting: the caller ends the team (e.g.
+/// `MPI_Abort()`).
+///
+/// \tparam TileTeam a model of the team: `rank()` and `size()`; `broadcast(std::vector<char>&)`
+///         (rank 0's bytes to every process); `all_gather(const std::vector<std::uint64_t>&)`
+///         (every process's values, rank 0's first, then rank 1's, ...)
+template <class ConcurrencyTag = CGAL::Sequential_tag, class TileTeam, class TriangleSource, class NamedParameters>
+Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const TriangleSource& source,
+                                                       std::size_t number_of_tiles, const std::string& folder,
+                                                       std::vector<CGAL::Epick::Point_3>& points,
+                                                       std::vector<std::array<std::uint32_t, 3>>& triangles,
+                                                       const NamedParameters& np)
+{
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -297,6 +385,13 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
   const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
   const Small_features policy = internal::small_features_policy(np);
+  constexpr bool default_halo = is_default_parameter<NamedParameters, internal_np::tile_halo_t>::value;
+  if(!default_halo) {
+    const double given = choose_parameter(get_parameter(np, internal_np::tile_halo), 1.0);
+    if(!(given > 0) || !std::isfinite(given)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
+  }
+  if(number_of_tiles == 0) throw Invalid_input("plan_tiles: at least one tile is needed");
+  const bool root = team.rank() == 0, alone = team.size() == 1;
 
   Tiled_reconstruction_report report;
   report.tolerance = tolerance;
@@ -304,16 +399,26 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   // spreads by about one star in the first weld, and further only through decisions taken near
   // tainted points (the design page): four mean edges cover the jittered seams measured. The
   // check grows it where that is not enough. The mean edge length comes with the plan.
-  Tile_plan plan = plan_tiles(source, number_of_tiles, 0);
-  const double default_halo = 4 * tolerance + 4 * plan.mean_edge_length();
-  const double halo = choose_parameter(get_parameter(np, internal_np::tile_halo), default_halo > 0 ? default_halo : 1.0);
-  if(!(halo > 0) || !std::isfinite(halo)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
-  plan = plan.with_halo(halo);
+  Tile_plan plan;
+  Tile_files files;
+  if(root) {
+    plan = plan_tiles(source, number_of_tiles, 0);
+    const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
+    plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
+    files = write_tile_files(source, plan, folder);
+    for(std::size_t h : files.halo) report.halo_triangles += h;
+  }
+  if(!alone) {
+    // The plan, once the spill files are written.
+    std::vector<char> bytes;
+    if(root) bytes = plan.to_bytes();
+    team.broadcast(bytes);
+    if(!root) plan = Tile_plan::from_bytes(bytes);
+  }
+  const double halo = plan.halo();
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
   report.tiles = plan.number_of_tiles();
-  Tile_files files = write_tile_files(source, plan, folder);
-  for(std::size_t h : files.halo) report.halo_triangles += h;
 
   // Rounds: every tile to do is repaired from its spill file; the tiles with a tainted owned
   // triangle are spilled again, together in one stream of the source, with the halo doubled.
@@ -324,47 +429,90 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
   // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
   const double enough = 4 * (plan.side() + tolerance) + halo;
   bool whole = false;
+  enum Outcome : std::uint64_t { kept_clean, tainted_owned, degenerate_under_collapse, crowded };
   for(double h = halo; !to_do.empty() && !whole; h *= 2) {
     report.largest_halo = std::max(report.largest_halo, h);
-    std::vector<std::size_t> tainted;
-    for(std::size_t tile : to_do) {
+    // This process's runs, four values each: the position in `to_do`, the outcome, the size of
+    // the region, the tainted owned triangles. A process stops at its first run that needs the
+    // whole soup: the walk below stops there, or before.
+    std::vector<std::uint64_t> runs;
+    for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) {
+      const std::size_t tile = to_do[k];
+      const std::string file = internal::tile_file_name(folder, tile);
       region.clear();
-      for(const Tile_triangle& t : read_tile_file(files.files[tile])) region.push_back(t.corners);
-      std::remove(files.files[tile].c_str());
-      report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
-      ++report.tile_runs;
+      for(const Tile_triangle& t : read_tile_file(file)) region.push_back(t.corners);
+      std::remove(file.c_str());
       internal::Tile_run run =
         internal::repair_tile_region<ConcurrencyTag>(region, plan, tile, h, tolerance, max_rounds, do_split, policy);
-      if(run.degenerate_under_collapse) {
+      const Outcome outcome = run.degenerate_under_collapse ? degenerate_under_collapse
+                              : run.crowded                 ? crowded
+                              : run.tainted_owned == 0      ? kept_clean
+                                                            : tainted_owned;
+      runs.insert(runs.end(), {k, outcome, region.size(), run.tainted_owned});
+      if(outcome == kept_clean) {
+        if(alone)
+          kept.push_back(std::move(run.owned));
+        else
+          internal::write_part_file(internal::part_file_name(folder, tile), run.owned);
+      }
+      if(outcome == degenerate_under_collapse || outcome == crowded) break;
+    }
+    if(!alone) runs = team.all_gather(runs);
+    constexpr std::uint64_t not_run = static_cast<std::uint64_t>(-1);
+    std::vector<std::array<std::uint64_t, 3>> by_position(to_do.size(), {{not_run, 0, 0}});
+    for(std::size_t r = 0; r + 3 < runs.size(); r += 4) by_position[runs[r]] = {{runs[r + 1], runs[r + 2], runs[r + 3]}};
+    std::vector<std::size_t> tainted;
+    for(std::size_t k = 0; k < to_do.size(); ++k) {
+      const std::array<std::uint64_t, 3>& run = by_position[k];
+      if(run[0] == not_run) throw std::logic_error("tiled_reconstruct_topology: a tile of the round was not repaired");
+      report.largest_tile_triangles = std::max(report.largest_tile_triangles, std::size_t(run[1]));
+      ++report.tile_runs;
+      if(run[0] == degenerate_under_collapse) {
         whole = true;
         report.whole_soup_reason = "a degenerate triangle under Small_features::COLLAPSE (its flips are not tiled)";
         break;
       }
-      if(run.crowded) {
+      if(run[0] == crowded) {
         whole = true;
         report.whole_soup_reason = "a crowd of points within the tolerance of each other (more than " +
                                    std::to_string(internal::Tile_taint<CGAL::Epick>::crowd_budget) +
                                    " points read a point of a tile in a phase of its taint)";
         break;
       }
-      if(run.tainted_owned == 0) {
-        kept.push_back(std::move(run.owned));
-        continue;
+      if(run[0] == tainted_owned) {
+        report.discarded_triangles += std::size_t(run[2]);
+        tainted.push_back(to_do[k]);
       }
-      report.discarded_triangles += run.tainted_owned;
-      tainted.push_back(tile);
     }
     if(whole || tainted.empty()) break;
     if(h == halo) report.repeated_tiles = tainted.size();
     if(h > enough) throw std::logic_error("tiled_reconstruct_topology: a region holding the whole soup is tainted");
-    std::vector<char> wanted(plan.number_of_tiles(), 0);
-    for(std::size_t tile : tainted) wanted[tile] = 1;
-    files = write_tile_files(source, plan.with_halo(2 * h), folder, &wanted);
+    if(root) {
+      std::vector<char> wanted(plan.number_of_tiles(), 0);
+      for(std::size_t tile : tainted) wanted[tile] = 1;
+      files = write_tile_files(source, plan.with_halo(2 * h), folder, &wanted);
+    }
+    if(!alone) {
+      std::vector<char> spilled; // the spill files of the next round are written
+      team.broadcast(spilled);
+    }
     to_do.swap(tainted);
   }
+  std::vector<Tile_corners>().swap(region);
+  points.clear();
+  triangles.clear();
+  if(!root) return report;
+  if(!alone) {
+    // Every process's part files are written (the gather of the last round): rank 0 reads them.
+    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) {
+      const std::string part = internal::part_file_name(folder, tile);
+      if(!whole) kept.push_back(internal::read_part_file(part));
+      std::remove(part.c_str());
+    }
+  }
   if(whole) {
-    for(const std::string& file : files.files)
-      if(!file.empty()) std::remove(file.c_str());
+    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile)
+      std::remove(internal::tile_file_name(folder, tile).c_str());
     // One tile holding everything, deep enough that nothing is tainted.
     Tile_plan one = plan_tiles(source, 1, 0);
     region.clear();
@@ -376,8 +524,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(const TriangleSource& sou
     kept.clear();
     kept.push_back(
       internal::repair_tile_region<ConcurrencyTag>(region, one, 0, deep, tolerance, max_rounds, do_split, policy, true).owned);
+    std::vector<Tile_corners>().swap(region);
   }
-  std::vector<Tile_corners>().swap(region);
   internal::merge_in_canonical_order(kept, points, triangles);
   report.output_points = points.size();
   report.output_triangles = triangles.size();
