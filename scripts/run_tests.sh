@@ -13,8 +13,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 hardening=${SOUP_TOPOLOGY_HARDENING:-1}
 # Every Debian package of the steps below in one apt-get run: the build, clang and libFuzzer for
-# the fuzz step, Chromium and Node.js for the browser tests.
-extras=(browser)
+# the fuzz step, Chromium and Node.js for the browser tests, Open MPI for soup_topology_mpi.
+extras=(browser mpi)
 [ "$hardening" != 0 ] && extras+=(fuzz)
 bash scripts/setup.sh "${extras[@]}"
 build=${BUILD_DIR:-build}

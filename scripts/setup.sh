@@ -4,6 +4,7 @@
 # fresh machine reads the package lists once:
 #   fuzz     clang and libFuzzer (scripts/run_fuzz.sh)
 #   browser  Chromium and Node.js with npm (the browser tests; Node.js only where `node` is missing)
+#   mpi      Open MPI (soup_topology_mpi and its tests under mpirun)
 # e.g. `bash scripts/setup.sh fuzz browser`.
 set -euo pipefail
 packages=(g++ cmake make xz-utils libcgal-dev libgmp-dev libmpfr-dev libboost-graph-dev libeigen3-dev
@@ -14,7 +15,8 @@ for extra in "$@"; do
     browser)
       packages+=(chromium)
       command -v node > /dev/null || packages+=(nodejs npm) ;;
-    *) echo "setup.sh: unknown set '$extra' (known: fuzz, browser)" >&2; exit 2 ;;
+    mpi) packages+=(libopenmpi-dev openmpi-bin) ;;
+    *) echo "setup.sh: unknown set '$extra' (known: fuzz, browser, mpi)" >&2; exit 2 ;;
   esac
 done
 missing=()

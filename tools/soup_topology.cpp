@@ -17,6 +17,9 @@
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/tiled_reconstruct_topology.h>
+#ifdef SOUP_TOPOLOGY_MPI
+#include <Soup_topology/Mpi_tile_team.h>
+#endif
 #include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
@@ -79,7 +82,8 @@ struct Usage_error : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-const char* usage_text =
+// (soup_topology_mpi calls none of the commands but its own: [[maybe_unused]].)
+[[maybe_unused]] const char* usage_text =
   "usage:\n"
   "  soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
@@ -91,7 +95,7 @@ const char* usage_text =
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "                       [--small-features collapse|refuse] [--html REPORT.html] [--threads N]\n"
-  "                       [--tiles N]\n"
+  "                       [--tiles N [--spill-folder DIR]]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; auto: the one the\n"
   "      gap analysis suggests; per-part: the one it suggests for each part, two points welded\n"
@@ -115,6 +119,8 @@ const char* usage_text =
   "      --tiles N repairs the soup in N tiles, one after the other (a binary STL is streamed,\n"
   "      never held whole), with --tolerance T: the same triangles on the same points, in a\n"
   "      canonical order; the report gives the tiles' runs instead of the weld's counts.\n"
+  "      --spill-folder DIR: where the tiles' spill files go (in a new folder, removed at the\n"
+  "      end; default: the temporary directory).\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -261,7 +267,7 @@ std::size_t parse_threads(const std::string& command, const std::string& text)
   return n;
 }
 
-int run_stats(const std::vector<std::string>& args)
+[[maybe_unused]] int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
@@ -392,6 +398,7 @@ struct Repair_options
   bool per_part = false;         // --tolerance per-part: the analysis per part, a tolerance per point
   std::size_t threads = 0;       // --threads N; 0: all cores
   std::size_t tiles = 0;         // --tiles N; 0: the soup in memory
+  std::string spill_folder;      // --spill-folder DIR; empty: the temporary directory
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
 };
@@ -433,6 +440,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--small-features") o.small_features = parse_small_features(value());
     else if(a == "--threads") o.threads = parse_threads("repair", value());
     else if(a == "--tiles") o.tiles = parse_tiles(value());
+    else if(a == "--spill-folder") o.spill_folder = value();
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -652,15 +660,18 @@ bool is_binary_stl(const std::string& file)
   return static_cast<std::uint64_t>(in.tellg()) == 84 + 50 * std::uint64_t(n);
 }
 
-// A folder of its own for the spill files, removed with everything in it.
+// A folder of its own for the spill files, made in `base` (default: the temporary directory),
+// removed with everything in it.
 class Spill_folder
 {
 public:
-  Spill_folder()
+  explicit Spill_folder(const std::string& base)
   {
     namespace fs = std::filesystem;
+    const fs::path parent = base.empty() ? fs::temp_directory_path() : fs::path(base);
+    if(!fs::is_directory(parent)) throw ST::IO::Write_error(parent.string() + ": no such folder for the spill files");
     for(unsigned k = 0;; ++k) {
-      path_ = fs::temp_directory_path() / ("soup_topology_tiles_" + std::to_string(::getpid()) + "_" + std::to_string(k));
+      path_ = parent / ("soup_topology_tiles_" + std::to_string(::getpid()) + "_" + std::to_string(k));
       if(fs::create_directory(path_)) break;
     }
   }
@@ -669,33 +680,49 @@ public:
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
   }
+  Spill_folder(const Spill_folder&) = delete;
+  Spill_folder& operator=(const Spill_folder&) = delete;
   std::string path() const { return path_.string(); }
 private:
   std::filesystem::path path_;
 };
 
-// `repair --tiles N`: tiled_reconstruct_topology(), then the same orientation and writing.
-int run_tiled_repair(const Repair_options& o)
+// `repair --tiles N`: tiled_reconstruct_topology() by `team` (one process, or the ranks of
+// soup_topology_mpi), then rank 0 orients and writes as `repair` does.
+template <class Team>
+int run_tiled_repair(const Repair_options& o, Team& team)
 {
   const auto np = ST::parameters::small_features(
     o.small_features, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
+  const bool root = team.rank() == 0;
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   ST::Tiled_reconstruction_report t;
   std::string format = "stl";
   {
-    const Spill_folder folder;
+    // Rank 0 makes the folder; the others are told its path.
+    std::optional<Spill_folder> own;
+    std::vector<char> path;
+    if(root) {
+      own.emplace(o.spill_folder);
+      const std::string p = own->path();
+      path.assign(p.begin(), p.end());
+    }
+    team.broadcast(path);
+    const std::string folder(path.begin(), path.end());
     if(is_binary_stl(o.in)) {
-      t = ST::tiled_reconstruct_topology<Concurrency>(ST::Binary_STL_source({o.in}), o.tiles, folder.path(), points, triangles, np);
+      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Binary_STL_source({o.in}), o.tiles, folder, points, triangles, np);
     } else {
+      // Only rank 0 reads the soup (the others never read the source).
       std::vector<Point> in_points;
       std::vector<Triangle> in_triangles;
-      format = ST::IO::read_triangle_soup<Concurrency>(o.in, in_points, in_triangles).format;
-      t = ST::tiled_reconstruct_topology<Concurrency>(ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(
-                                                        in_points, in_triangles),
-                                                      o.tiles, folder.path(), points, triangles, np);
+      if(root) format = ST::IO::read_triangle_soup<Concurrency>(o.in, in_points, in_triangles).format;
+      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(
+                                                              in_points, in_triangles),
+                                                      o.tiles, folder, points, triangles, np);
     }
   }
+  if(!root) return 0;
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
   const Written_soup written(o, points, triangles, progress);
@@ -719,6 +746,7 @@ int run_tiled_repair(const Repair_options& o)
   rep.add("halo_triangles", t.halo_triangles);
   rep.add("whole_soup", t.whole_soup);
   if(t.whole_soup) rep.add_string("whole_soup_reason", t.whole_soup_reason);
+  if(team.size() > 1) rep.add("processes", team.size());
   rep.add("duplicate_triangles_removed", written.orientation.duplicate_triangles);
   rep.add("orientation_flips", written.orientation.orientation_flips);
   rep.add("duplicated_points", written.orientation.duplicated_points);
@@ -729,14 +757,18 @@ int run_tiled_repair(const Repair_options& o)
   return written.exit_code(o);
 }
 
-int run_repair(const std::vector<std::string>& args)
+[[maybe_unused]] int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
+  if(!o.spill_folder.empty() && o.tiles == 0) throw Usage_error("repair: --spill-folder goes with --tiles N");
   check_repair_paths(o.in, o.out, o.report_file);
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
-  if(o.tiles > 0) return run_tiled_repair(o);
+  if(o.tiles > 0) {
+    ST::Single_process_team alone;
+    return run_tiled_repair(o, alone);
+  }
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
@@ -760,7 +792,7 @@ int run_repair(const std::vector<std::string>& args)
 }
 
 // `gaps`: the options of the analysis are read by tool::run_gaps(), `--threads N` here.
-int run_gaps(std::vector<std::string> args)
+[[maybe_unused]] int run_gaps(std::vector<std::string> args)
 {
   std::size_t threads = 0;
   for(std::size_t i = 0; i < args.size(); ++i)
@@ -774,8 +806,34 @@ int run_gaps(std::vector<std::string> args)
   return tool::run_gaps<Concurrency>(args);
 }
 
+#ifdef SOUP_TOPOLOGY_MPI
+const char* mpi_usage_text =
+  "usage:\n"
+  "  mpirun -np K soup_topology_mpi IN -o OUT --tolerance T [--tiles N] [--spill-folder DIR]\n"
+  "                                 [the other options of soup_topology repair, but --html]\n"
+  "      repairs IN as 'soup_topology repair IN -o OUT --tolerance T --tiles N' does, with the\n"
+  "      tiles shared by the K processes: rank 0 plans and spills the tiles into a folder of\n"
+  "      DIR (default: the temporary directory; on several machines, a folder they share), every\n"
+  "      rank repairs its share, rank 0 merges, orients and writes OUT and prints the report.\n"
+  "      The output is the same for every K and N. Default N: 4 K.\n"
+  "exit codes: as soup_topology repair\n";
+
+// soup_topology_mpi: `repair --tiles N` by the ranks of MPI_COMM_WORLD.
+int run_mpi_repair(const std::vector<std::string>& args, ST::Mpi_tile_team& team)
+{
+  Repair_options o = parse_repair_arguments(args);
+  if(!o.tolerance) throw Usage_error("soup_topology_mpi: give an absolute --tolerance T");
+  if(o.tiles == 0) o.tiles = std::min<std::size_t>(4096, 4 * team.size());
+  check_repair_paths(o.in, o.out, o.report_file);
+  tool::install_signal_handlers();
+  const Thread_limit limit(o.threads);
+  return run_tiled_repair(o, team);
+}
+#endif
+
 } // namespace
 
+#ifndef SOUP_TOPOLOGY_MPI
 int main(int argc, char** argv)
 {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -807,3 +865,34 @@ int main(int argc, char** argv)
     return 2;
   }
 }
+#else
+int main(int argc, char** argv)
+{
+  MPI_Init(&argc, &argv);
+  ST::Mpi_tile_team team;
+  const bool root = team.rank() == 0;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if(args.empty() || args[0] == "--help" || args[0] == "-h") {
+    if(root) (args.empty() ? std::cerr : std::cout) << mpi_usage_text;
+    MPI_Finalize();
+    return args.empty() ? 2 : 0;
+  }
+  int code = 0;
+  try {
+    code = run_mpi_repair(args, team);
+  } catch(const Usage_error& e) {
+    // Every rank parses the same arguments: every rank stops here.
+    if(root) std::cerr << "soup_topology_mpi: " << e.what() << "\n" << mpi_usage_text;
+    MPI_Finalize();
+    return 2;
+  } catch(const std::exception& e) {
+    // The other ranks may wait for this one: the whole job ends.
+    std::cerr << "soup_topology_mpi: rank " << team.rank() << ": "
+              << (dynamic_cast<const ST::Invalid_input*>(&e) != nullptr ? "invalid input: " : "") << e.what() << "\n";
+    MPI_Abort(MPI_COMM_WORLD, 2);
+    return 2;
+  }
+  MPI_Finalize();
+  return code;
+}
+#endif
