@@ -6,6 +6,7 @@
 // chain of points that the first halo cannot decide.
 
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/tiled_reconstruct_topology.h>
 #include <Soup_topology/internal/tile_taint.h>
@@ -21,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <condition_variable>
+#include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <random>
@@ -553,6 +555,63 @@ TEST(TiledReconstruction, ToolWritesTheSameMeshWithTiles)
                                           "/out.off' --relative-tolerance 1e-6 --tiles 8 2>&1");
   EXPECT_EQ(bad.second, 2) << bad.first;
   EXPECT_NE(bad.first.find("--tiles needs an absolute --tolerance"), std::string::npos) << bad.first;
+  std::filesystem::remove_all(folder);
+}
+
+// `repair --max-memory SIZE`: in memory when the model says the soup fits, in tiles when it does
+// not (the same mesh), refused when SIZE is below what the output needs. A soup of about 90,000
+// triangles (the elephant, subdivided twice, cut into patches with jittered seams), written as a
+// binary STL: the tool reads its number of triangles from the header.
+TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
+{
+  Soup mesh;
+  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  const double d = diagonal(mesh.points);
+  auto soup = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
+  for(Point& p : soup.points) p = Point(float(p.x()), float(p.y()), float(p.z()));
+  const std::string folder = soup_test::temporary_folder("tiled_memory");
+  const std::string in = folder + "/soup.stl";
+  ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", 1e-5 * d);
+  const auto repair = [&](const std::string& limit, const std::string& out) {
+    return soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + in + "' -o '" + out +
+                                  "' --json --tolerance " + tolerance + " --max-memory " + limit + " 2>&1");
+  };
+  const auto canonical_of = [](const std::string& file) {
+    Soup s;
+    ST::IO::read_triangle_soup(file, s.points, s.triangles);
+    Canonical c;
+    ST::canonical_triangle_soup(s.points, s.triangles, c.points, c.triangles);
+    return c;
+  };
+  const auto whole = repair("2G", folder + "/whole.off");
+  ASSERT_EQ(whole.second, 0) << whole.first;
+  EXPECT_EQ(soup_test::json_integer(whole.first, "tiles"), -1) << "in memory: " << whole.first;
+  EXPECT_GT(soup_test::json_integer(whole.first, "modelled_peak"), 0) << whole.first;
+  const Canonical expected = canonical_of(folder + "/whole.off");
+  ASSERT_GT(expected.triangles.size(), 80000u);
+  // Between the output's need and the whole soup's: tiles, the fewer the larger the limit.
+  long long previous_tiles = 0;
+  for(const std::string limit : {"50M", "42M"}) {
+    const auto tiled_run = repair(limit, folder + "/tiled.off");
+    ASSERT_EQ(tiled_run.second, 0) << tiled_run.first;
+    const long long tiles = soup_test::json_integer(tiled_run.first, "tiles");
+    EXPECT_GT(tiles, 1) << limit << ": " << tiled_run.first;
+    EXPECT_GT(tiles, previous_tiles) << limit;
+    previous_tiles = tiles;
+    EXPECT_LE(soup_test::json_integer(tiled_run.first, "modelled_peak"),
+              soup_test::json_integer(tiled_run.first, "max_memory")) << tiled_run.first;
+    EXPECT_TRUE(same(expected, canonical_of(folder + "/tiled.off"))) << limit;
+  }
+  const auto too_small = repair("20M", folder + "/small.off");
+  EXPECT_EQ(too_small.second, 2) << too_small.first;
+  EXPECT_NE(too_small.first.find("too small"), std::string::npos) << too_small.first;
+  EXPECT_FALSE(std::filesystem::exists(folder + "/small.off"));
+  const auto with_tiles = repair("1G --tiles 4", folder + "/both.off");
+  EXPECT_EQ(with_tiles.second, 2) << with_tiles.first;
   std::filesystem::remove_all(folder);
 }
 

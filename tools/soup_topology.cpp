@@ -95,7 +95,7 @@ struct Usage_error : std::runtime_error
   "                       [--json] [--check] [--no-t-junctions] [--self-intersections]\n"
   "                       [--orientation bound-volume|keep-input|outward]\n"
   "                       [--small-features collapse|refuse] [--html REPORT.html] [--threads N]\n"
-  "                       [--tiles N [--spill-folder DIR]]\n"
+  "                       [--tiles N [--spill-folder DIR] | --max-memory SIZE]\n"
   "      reads IN (formats as for stats, and .wrl VRML 2.0), welds exact duplicates, welds vertices\n"
   "      within the tolerance (absolute T, or R times the bounding-box diagonal; auto: the one the\n"
   "      gap analysis suggests; per-part: the one it suggests for each part, two points welded\n"
@@ -121,6 +121,10 @@ struct Usage_error : std::runtime_error
   "      canonical order; the report gives the tiles' runs instead of the weld's counts.\n"
   "      --spill-folder DIR: where the tiles' spill files go (in a new folder, removed at the\n"
   "      end; default: the temporary directory).\n"
+  "      --max-memory SIZE (e.g. 500M, 4G; with --tolerance T) keeps the peak resident memory\n"
+  "      under SIZE by a model of it: in memory when the soup fits, else in the fewest tiles\n"
+  "      (a power of two) that fit; refused (exit 2) when SIZE is below what the merge and the\n"
+  "      orientation of the output need. The report gives the model's peak.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -399,9 +403,26 @@ struct Repair_options
   std::size_t threads = 0;       // --threads N; 0: all cores
   std::size_t tiles = 0;         // --tiles N; 0: the soup in memory
   std::string spill_folder;      // --spill-folder DIR; empty: the temporary directory
+  std::optional<double> max_memory; // --max-memory SIZE, in bytes: the number of tiles is chosen
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
 };
+
+// "500M", "4G", "1.5G", "300000K", or bytes: powers of 1024.
+double parse_memory(const std::string& text)
+{
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  double unit = 1;
+  const std::string suffix(end);
+  if(suffix == "K" || suffix == "k") unit = 1024.0;
+  else if(suffix == "M" || suffix == "m") unit = 1024.0 * 1024;
+  else if(suffix == "G" || suffix == "g") unit = 1024.0 * 1024 * 1024;
+  else if(!suffix.empty()) unit = 0;
+  if(text.empty() || end == text.c_str() || unit == 0 || !std::isfinite(x) || x <= 0)
+    throw Usage_error("repair: --max-memory takes a size such as 500M or 4G, not '" + text + "'");
+  return x * unit;
+}
 
 std::size_t parse_tiles(const std::string& text)
 {
@@ -441,6 +462,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--threads") o.threads = parse_threads("repair", value());
     else if(a == "--tiles") o.tiles = parse_tiles(value());
     else if(a == "--spill-folder") o.spill_folder = value();
+    else if(a == "--max-memory") o.max_memory = parse_memory(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
     else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
@@ -451,6 +473,8 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     throw Usage_error("repair: give --tolerance or --relative-tolerance, not both");
   if(o.tiles > 0 && (!o.tolerance || !o.html_file.empty()))
     throw Usage_error("repair: --tiles needs an absolute --tolerance T, and makes no --html page");
+  if(o.max_memory && (o.tiles > 0 || !o.tolerance || !o.html_file.empty()))
+    throw Usage_error("repair: --max-memory needs an absolute --tolerance T, and goes without --tiles N and --html");
   o.out_format = ST::IO::file_extension(o.out);
   if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
@@ -687,10 +711,71 @@ private:
   std::filesystem::path path_;
 };
 
-// `repair --tiles N`: tiled_reconstruct_topology() by `team` (one process, or the ranks of
-// soup_topology_mpi), then rank 0 orients and writes as `repair` does.
+// The model of the peak resident memory of `repair --tiles N` (doc/Soup_topology/Tiled_repair.md,
+// "Bounded memory"), in bytes, for a soup of `n` triangles of which `held` bytes are held whole
+// (a soup that is not a binary STL is read whole first). Measured on the jittered tori of 1M and
+// 4M triangles: a tile's region costs about 560 bytes a triangle while it is repaired, the kept
+// triangles 48 bytes a triangle of the soup, and the merge, the orientation and the statistics of
+// the output 140; the largest region is at most 1.25 times a tile's share plus 25,000 triangles
+// of halo.
+struct Tiled_memory_model
+{
+  static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 560, per_kept_triangle = 48,
+                          per_output_triangle = 140;
+  double n, held;
+  // the peak while the tiles are repaired
+  double tiles_peak(std::size_t tiles) const
+  {
+    const double region = tiles == 1 ? n : std::min(n, 1.25 * n / double(tiles) + 25000);
+    return base + held + per_kept_triangle * n + per_region_triangle * region;
+  }
+  // the peak of the merge, the orientation and the writing, whatever the number of tiles
+  double output_peak() const { return base + per_output_triangle * n; }
+  double peak(std::size_t tiles) const { return std::max(tiles_peak(tiles), output_peak()); }
+};
+
+std::string mebibytes(double bytes)
+{
+  return std::to_string(static_cast<long long>(std::ceil(bytes / (1024.0 * 1024)))) + "M";
+}
+
+// --max-memory: the fewest tiles (a power of two up to 4096) whose modelled peak fits.
+std::size_t choose_tiles(const Tiled_memory_model& model, double limit)
+{
+  if(model.output_peak() > limit)
+    throw std::runtime_error("repair: --max-memory " + mebibytes(limit) + " is too small for " +
+                      std::to_string(static_cast<long long>(model.n)) + " triangles: the merge and the orientation of the " +
+                      "output are in memory and need about " + mebibytes(model.output_peak()));
+  for(std::size_t tiles = 1; tiles <= 4096; tiles *= 2)
+    if(model.tiles_peak(tiles) <= limit) return tiles;
+  throw std::runtime_error("repair: --max-memory " + mebibytes(limit) + " is too small: 4096 tiles need about " +
+                    mebibytes(model.peak(4096)));
+}
+
+// The number of triangles of a binary STL (is_binary_stl() checked it).
+std::uint64_t binary_stl_triangles(const std::string& file)
+{
+  std::ifstream in(file, std::ios::binary);
+  char header[84];
+  in.read(header, 84);
+  std::uint32_t n = 0;
+  std::memcpy(&n, header + 80, 4);
+  return n;
+}
+
+// A soup read whole before the choice between the repair in memory and in tiles.
+struct Read_soup
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::IO::Soup_read_report read;
+};
+
+// `repair --tiles N` (or `--max-memory SIZE`): tiled_reconstruct_topology() by `team` (one
+// process, or the ranks of soup_topology_mpi), then rank 0 orients and writes as `repair` does.
+// `given`: the soup, if it is read already.
 template <class Team>
-int run_tiled_repair(const Repair_options& o, Team& team)
+int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nullptr)
 {
   const auto np = ST::parameters::small_features(
     o.small_features, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
@@ -699,6 +784,8 @@ int run_tiled_repair(const Repair_options& o, Team& team)
   std::vector<Triangle> triangles;
   ST::Tiled_reconstruction_report t;
   std::string format = "stl";
+  std::optional<Tiled_memory_model> model;
+  std::size_t tiles = o.tiles;
   {
     // Rank 0 makes the folder; the others are told its path.
     std::optional<Spill_folder> own;
@@ -710,16 +797,31 @@ int run_tiled_repair(const Repair_options& o, Team& team)
     }
     team.broadcast(path);
     const std::string folder(path.begin(), path.end());
-    if(is_binary_stl(o.in)) {
-      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Binary_STL_source({o.in}), o.tiles, folder, points, triangles, np);
+    if(given == nullptr && is_binary_stl(o.in)) {
+      if(o.max_memory) {
+        model = Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
+        tiles = choose_tiles(*model, *o.max_memory);
+      }
+      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Binary_STL_source({o.in}), tiles, folder, points, triangles, np);
     } else {
       // Only rank 0 reads the soup (the others never read the source).
       std::vector<Point> in_points;
       std::vector<Triangle> in_triangles;
-      if(root) format = ST::IO::read_triangle_soup<Concurrency>(o.in, in_points, in_triangles).format;
+      if(given != nullptr) {
+        in_points.swap(given->points);
+        in_triangles.swap(given->triangles);
+        format = given->read.format;
+      } else if(root) {
+        format = ST::IO::read_triangle_soup<Concurrency>(o.in, in_points, in_triangles).format;
+      }
+      if(o.max_memory) {
+        model = Tiled_memory_model{double(in_triangles.size()),
+                                   double(in_points.capacity() * sizeof(Point) + in_triangles.capacity() * sizeof(Triangle))};
+        tiles = choose_tiles(*model, *o.max_memory);
+      }
       t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(
                                                               in_points, in_triangles),
-                                                      o.tiles, folder, points, triangles, np);
+                                                      tiles, folder, points, triangles, np);
     }
   }
   if(!root) return 0;
@@ -736,6 +838,10 @@ int run_tiled_repair(const Repair_options& o, Team& team)
   if(written.intersecting) rep.add("self_intersecting_pairs", *written.intersecting);
   rep.add("soup_vertices", t.output_points);
   rep.add("soup_triangles", t.output_triangles);
+  if(model) {
+    rep.add("max_memory", static_cast<std::size_t>(*o.max_memory));
+    rep.add("modelled_peak", static_cast<std::size_t>(model->peak(tiles)));
+  }
   rep.add("tiles", t.tiles);
   rep.add("tile_runs", t.tile_runs);
   rep.add("repeated_tiles", t.repeated_tiles);
@@ -765,14 +871,35 @@ int run_tiled_repair(const Repair_options& o, Team& team)
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
-  if(o.tiles > 0) {
-    ST::Single_process_team alone;
-    return run_tiled_repair(o, alone);
+  ST::Single_process_team alone;
+  if(o.tiles > 0) return run_tiled_repair(o, alone);
+  // --max-memory: in tiles when the repair in memory would not fit (a binary STL is not read
+  // for that: its header gives the number of triangles).
+  Read_soup soup;
+  bool soup_read = false;
+  std::optional<Tiled_memory_model> model;
+  if(o.max_memory) {
+    if(is_binary_stl(o.in)) {
+      model = Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
+    } else {
+      soup.read = ST::IO::read_triangle_soup<Concurrency>(o.in, soup.points, soup.triangles);
+      soup_read = true;
+      model = Tiled_memory_model{double(soup.triangles.size()),
+                                 double(soup.points.capacity() * sizeof(Point) + soup.triangles.capacity() * sizeof(Triangle))};
+    }
+    if(choose_tiles(*model, *o.max_memory) > 1) return run_tiled_repair(o, alone, soup_read ? &soup : nullptr);
   }
 
   std::vector<Point> points;
   std::vector<Triangle> triangles;
-  const ST::IO::Soup_read_report read = ST::IO::read_triangle_soup<Concurrency>(o.in, points, triangles);
+  ST::IO::Soup_read_report read;
+  if(soup_read) {
+    points.swap(soup.points);
+    triangles.swap(soup.triangles);
+    read = soup.read;
+  } else {
+    read = ST::IO::read_triangle_soup<Concurrency>(o.in, points, triangles);
+  }
   const Progress progress(read.input_triangles > 1000000);
   progress("read " + std::to_string(read.input_triangles) + " triangles");
   tool::Html_input_soup<Point> html_input;
@@ -784,7 +911,11 @@ int run_tiled_repair(const Repair_options& o, Team& team)
 
   // The report's statistics describe the soup written.
   const Written_soup written(o, points, triangles, progress);
-  const Report rep = repair_report(o, read, r, written.orientation, written.statistics, written.intersecting);
+  Report rep = repair_report(o, read, r, written.orientation, written.statistics, written.intersecting);
+  if(model) {
+    rep.add("max_memory", static_cast<std::size_t>(*o.max_memory));
+    rep.add("modelled_peak", static_cast<std::size_t>(model->peak(1)));
+  }
   write_repair_outputs(o, points, triangles, rep, progress);
   if(!o.html_file.empty()) tool::write_repair_html(o.html_file, o.in, html_input, points, triangles, r, rep.json());
   print(o.json ? rep.json() + "\n" : "soup_topology repair\n" + rep.text());
@@ -809,25 +940,25 @@ int run_tiled_repair(const Repair_options& o, Team& team)
 #ifdef SOUP_TOPOLOGY_MPI
 const char* mpi_usage_text =
   "usage:\n"
-  "  mpirun -np K soup_topology_mpi IN -o OUT --tolerance T [--tiles N] [--spill-folder DIR]\n"
+  "  mpirun -np K soup_topology_mpi IN -o OUT --tolerance T [--tiles N | --max-memory SIZE]\n"
+  "                                 [--spill-folder DIR]\n"
   "                                 [the other options of soup_topology repair, but --html]\n"
   "      repairs IN as 'soup_topology repair IN -o OUT --tolerance T --tiles N' does, with the\n"
   "      tiles shared by the K processes: rank 0 plans and spills the tiles into a folder of\n"
   "      DIR (default: the temporary directory; on several machines, a folder they share), every\n"
   "      rank repairs its share, rank 0 merges, orients and writes OUT and prints the report.\n"
-  "      The output is the same for every K and N. Default N: 4 K.\n"
+  "      The output is the same for every K and N. Default N: 4 K. --max-memory SIZE chooses N\n"
+  "      for rank 0's memory (the others hold one tile's region at a time).\n"
   "exit codes: as soup_topology repair\n";
 
-// soup_topology_mpi: `repair --tiles N` by the ranks of MPI_COMM_WORLD.
-int run_mpi_repair(const std::vector<std::string>& args, ST::Mpi_tile_team& team)
+// soup_topology_mpi: the options of `repair --tiles N`, checked by every rank alike.
+Repair_options mpi_repair_options(const std::vector<std::string>& args, const ST::Mpi_tile_team& team)
 {
   Repair_options o = parse_repair_arguments(args);
   if(!o.tolerance) throw Usage_error("soup_topology_mpi: give an absolute --tolerance T");
-  if(o.tiles == 0) o.tiles = std::min<std::size_t>(4096, 4 * team.size());
+  if(o.tiles == 0 && !o.max_memory) o.tiles = std::min<std::size_t>(4096, 4 * team.size());
   check_repair_paths(o.in, o.out, o.report_file);
-  tool::install_signal_handlers();
-  const Thread_limit limit(o.threads);
-  return run_tiled_repair(o, team);
+  return o;
 }
 #endif
 
@@ -877,14 +1008,20 @@ int main(int argc, char** argv)
     MPI_Finalize();
     return args.empty() ? 2 : 0;
   }
-  int code = 0;
+  Repair_options o;
   try {
-    code = run_mpi_repair(args, team);
-  } catch(const Usage_error& e) {
-    // Every rank parses the same arguments: every rank stops here.
+    o = mpi_repair_options(args, team);
+  } catch(const std::exception& e) {
+    // Every rank checks the same arguments: every rank stops here.
     if(root) std::cerr << "soup_topology_mpi: " << e.what() << "\n" << mpi_usage_text;
     MPI_Finalize();
     return 2;
+  }
+  int code = 0;
+  try {
+    tool::install_signal_handlers();
+    const Thread_limit limit(o.threads);
+    code = run_tiled_repair(o, team);
   } catch(const std::exception& e) {
     // The other ranks may wait for this one: the whole job ends.
     std::cerr << "soup_topology_mpi: rank " << team.rank() << ": "

@@ -213,7 +213,8 @@ struct Tile_run
 
 /// repairs the region of tile `tile` given by the corners of its triangles, with the halo `halo`,
 /// and keeps the owned triangles and the count of the tainted ones. Under `COLLAPSE`, a region
-/// with a degenerate triangle is not repaired unless it is the whole soup (`whole_soup`).
+/// with a degenerate triangle is not repaired unless it is the whole soup (`whole_soup`, or a
+/// region that holds every cell of the plan).
 template <class ConcurrencyTag>
 Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_plan& plan, std::size_t tile, double halo,
                             double tolerance, std::size_t max_rounds, bool do_split, Small_features policy,
@@ -237,7 +238,9 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   Soup_reconstruction<Kernel, Triangles, ConcurrencyTag> steps(points, triangles, input_index, kernel);
   steps.take_points(given);
   steps.weld_exact_duplicates();
-  if(policy == Small_features::COLLAPSE && !whole_soup) {
+  // A region that holds every cell holds the whole soup (no triangle leaves the cube).
+  const bool everything = whole_soup || plan.holds_every_cell(tile);
+  if(policy == Small_features::COLLAPSE && !everything) {
     // The flips of degenerate triangles are not followed by the taint: such a soup is not tiled.
     const Kernel::Collinear_3 collinear = kernel.collinear_3_object();
     for(const auto& t : triangles)
@@ -248,21 +251,18 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   }
   if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
   steps.build_tables();
-  // The depth of a point: the region holds every point within it. A region that holds every cell
-  // holds the whole soup (no triangle leaves the cube): nothing is shallow there.
-  std::vector<double> depth(points.size(), std::numeric_limits<double>::infinity());
-  if(!plan.holds_every_cell(tile)) {
-    const std::vector<std::array<double, 6>> boxes = plan.block_boxes(tile);
-    for(std::size_t v = 0; v < points.size(); ++v)
-      depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile, boxes);
-  }
   Default_snap_visitor visitor;
-  // The whole soup taints nothing (every point is deeper than the tolerance, no tainted point to
-  // start from): it is repaired without the observer.
+  // The whole soup taints nothing (no point is shallow, no tainted point to start from): it is
+  // repaired without the observer.
   std::optional<Tile_taint<Kernel>> taint;
-  if(whole_soup) {
+  if(everything) {
     steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor);
   } else {
+    // The depth of a point: the region holds every point within it.
+    const std::vector<std::array<double, 6>> boxes = plan.block_boxes(tile);
+    std::vector<double> depth(points.size());
+    for(std::size_t v = 0; v < points.size(); ++v)
+      depth[v] = halo - plan.distance_to_tile({{points[v].x(), points[v].y(), points[v].z()}}, tile, boxes);
     taint.emplace(points, std::move(depth), tolerance, policy == Small_features::COLLAPSE, kernel);
     steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor, *taint);
     if(taint->crowded()) {
