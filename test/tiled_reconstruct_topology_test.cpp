@@ -201,11 +201,30 @@ TEST(TiledReconstruction, ChainLongerThanTheHaloIsRepairedAgain)
   const Canonical expected = in_memory(soup, np);
   for(std::size_t tiles : {2, 8}) {
     ST::Tiled_reconstruction_report report;
-    EXPECT_TRUE(same(expected, tiled(soup, tiles, np, &report))) << tiles << " tiles";
+    std::vector<ST::Tile_progress> progress;
+    const auto with_progress = ST::parameters::tile_progress([&](const ST::Tile_progress& p) { progress.push_back(p); }, np);
+    EXPECT_TRUE(same(expected, tiled(soup, tiles, with_progress, &report))) << tiles << " tiles";
     EXPECT_GT(report.repeated_tiles, 0u) << tiles << " tiles";
     EXPECT_GT(report.discarded_triangles, 0u);
     EXPECT_GT(report.largest_halo, report.first_halo);
     EXPECT_LT(report.first_halo, 20 * t);
+    // One call a run; the runs of each round counted up to the round's size; every owned triangle
+    // kept in the end.
+    ASSERT_EQ(progress.size(), report.tile_runs);
+    EXPECT_EQ(progress.front().runs, tiles);
+    EXPECT_GT(progress.back().round, 0u);
+    for(std::size_t i = 0; i < progress.size(); ++i) {
+      EXPECT_LE(progress[i].runs_done, progress[i].runs);
+      if(i + 1 < progress.size() && progress[i + 1].round == progress[i].round) {
+        EXPECT_EQ(progress[i + 1].runs_done, progress[i].runs_done + 1);
+      }
+      if(i > 0) {
+        EXPECT_GE(progress[i].triangles_done, progress[i - 1].triangles_done);
+      }
+    }
+    EXPECT_EQ(progress.back().runs_done, progress.back().runs);
+    EXPECT_EQ(progress.back().triangles_done, soup.triangles.size());
+    EXPECT_EQ(progress.back().triangles, soup.triangles.size());
   }
 }
 

@@ -777,9 +777,24 @@ struct Read_soup
 template <class Team>
 int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nullptr)
 {
-  const auto np = ST::parameters::small_features(
-    o.small_features, ST::parameters::do_split_t_junctions(o.split, CGAL::parameters::snapping_tolerance(*o.tolerance)));
   const bool root = team.rank() == 0;
+  // On a terminal, rank 0's progress: tiles done, triangles a second, time left.
+  const bool show = root && ::isatty(STDERR_FILENO) == 1;
+  const auto start = std::chrono::steady_clock::now();
+  const auto display = [show, start](const ST::Tile_progress& p) {
+    if(!show) return;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double rate = seconds > 0 ? double(p.triangles_done) / seconds : 0;
+    std::cerr << "\rtile " << p.runs_done << "/" << p.runs;
+    if(p.round > 0) std::cerr << " (again, round " << p.round << ")";
+    std::cerr << ", " << static_cast<long long>(rate) << " triangles/s";
+    if(rate > 0) std::cerr << ", about " << static_cast<long long>(double(p.triangles - p.triangles_done) / rate) << " s left";
+    std::cerr << "     " << std::flush;
+  };
+  const auto np = ST::parameters::tile_progress(
+    display, ST::parameters::small_features(o.small_features,
+                                            ST::parameters::do_split_t_junctions(
+                                              o.split, CGAL::parameters::snapping_tolerance(*o.tolerance))));
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   ST::Tiled_reconstruction_report t;
@@ -824,6 +839,7 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
                                                       tiles, folder, points, triangles, np);
     }
   }
+  if(show) std::cerr << "\n";
   if(!root) return 0;
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");

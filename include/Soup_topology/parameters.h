@@ -104,6 +104,9 @@ SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(automatic_tolerance_t, automatic_tolerance)
 /// four times the mean edge length of the soup): a tile whose owned triangles are tainted is
 /// repaired again with the halo doubled, so the halo changes the time, never the result.
 SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(tile_halo_t, tile_halo)
+/// a callable taking a `const Tile_progress&`, called after each repair of a tile by the process
+/// that made it (default: none); for progress displays.
+SOUP_TOPOLOGY_ADD_NAMED_PARAMETER(tile_progress_t, tile_progress)
 
 // Orientation (`orient_triangle_soup()`, `triangle_soup_to_face_graph()`).
 

@@ -145,6 +145,18 @@ void canonical_triangle_soup(const PointRange& points_in, const TriangleRange& t
 }
 
 /// \ingroup PkgSoupTopologyTiling
+/// \brief where a tiled repair stands, for the named parameter `tile_progress`: counts of the
+/// process that calls it.
+struct Tile_progress
+{
+  std::size_t round = 0;              ///< 0 for the first runs, then one per doubling of the halo
+  std::size_t runs_done = 0;          ///< runs of this round done by this process
+  std::size_t runs = 0;               ///< runs of this round for this process
+  std::size_t triangles_done = 0;     ///< triangles owned by the tiles this process kept so far
+  std::size_t triangles = 0;          ///< triangles owned by the tiles of this process's first round
+};
+
+/// \ingroup PkgSoupTopologyTiling
 /// \brief the team of one process: `tiled_reconstruct_topology()` without a team uses it.
 struct Single_process_team
 {
@@ -330,7 +342,9 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
 ///   - `small_features` (`Small_features::COLLAPSE`), as for `reconstruct_topology()`; a soup
 ///     with a degenerate triangle under `COLLAPSE` is repaired as one tile (the report says so);
 ///   - `tile_halo`: the halo of the first runs (default: four times the tolerance plus four times
-///     the mean edge length of the soup); it changes the time, never the result.
+///     the mean edge length of the soup); it changes the time, never the result;
+///   - `tile_progress`: a callable taking a `const Tile_progress&`, called after each run of a
+///     tile (default: none).
 /// \throws Invalid_input for a missing or bad tolerance or a bad argument; the exceptions of the
 ///         source and of the spill files
 template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleSource,
@@ -392,6 +406,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   }
   if(number_of_tiles == 0) throw Invalid_input("plan_tiles: at least one tile is needed");
   const bool root = team.rank() == 0, alone = team.size() == 1;
+  auto progress =
+    choose_parameter(get_parameter(np, internal_np::tile_progress), [](const Tile_progress&) {});
 
   Tiled_reconstruction_report report;
   report.tolerance = tolerance;
@@ -429,6 +445,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
   const double enough = 4 * (plan.side() + tolerance) + halo;
   bool whole = false;
+  Tile_progress where;
+  for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) where.triangles += plan.owned_triangles(to_do[k]);
   enum Outcome : std::uint64_t { kept_clean, tainted_owned, degenerate_under_collapse, crowded };
   for(double h = halo; !to_do.empty() && !whole; h *= 2) {
     report.largest_halo = std::max(report.largest_halo, h);
@@ -436,6 +454,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
     // the region, the tainted owned triangles. A process stops at its first run that needs the
     // whole soup: the walk below stops there, or before.
     std::vector<std::uint64_t> runs;
+    where.runs_done = 0;
+    where.runs = to_do.size() > team.rank() ? (to_do.size() - team.rank() + team.size() - 1) / team.size() : 0;
     for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) {
       const std::size_t tile = to_do[k];
       const std::string file = internal::tile_file_name(folder, tile);
@@ -449,6 +469,9 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
                               : run.tainted_owned == 0      ? kept_clean
                                                             : tainted_owned;
       runs.insert(runs.end(), {k, outcome, region.size(), run.tainted_owned});
+      ++where.runs_done;
+      if(outcome == kept_clean) where.triangles_done += plan.owned_triangles(tile);
+      progress(where);
       if(outcome == kept_clean) {
         if(alone)
           kept.push_back(std::move(run.owned));
@@ -497,6 +520,7 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
       team.broadcast(spilled);
     }
     to_do.swap(tainted);
+    ++where.round;
   }
   std::vector<Tile_corners>().swap(region);
   points.clear();
