@@ -24,6 +24,8 @@
 #include <condition_variable>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <random>
 #include <string>
@@ -631,6 +633,62 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   EXPECT_FALSE(std::filesystem::exists(folder + "/small.off"));
   const auto with_tiles = repair("1G --tiles 4", folder + "/both.off");
   EXPECT_EQ(with_tiles.second, 2) << with_tiles.first;
+  std::filesystem::remove_all(folder);
+}
+
+// The files of an assembly given together (`repair A.stl B.stl -o OUT --tiles N`) are streamed
+// as one soup: the pig cut into two binary STL files gives the file of the whole pig, byte for
+// byte. Without tiles, or with a file that is not a binary STL, the tool refuses.
+TEST(TiledReconstruction, ToolRepairsTheFilesOfAnAssemblyTogether)
+{
+  Soup pig;
+  soup_test::read_data_mesh("cgal_repair/pig.stl.xz", pig.points, pig.triangles);
+  const std::string folder = soup_test::temporary_folder("tiled_assembly");
+  const std::size_t half = pig.triangles.size() / 2;
+  const std::vector<Triangle> first(pig.triangles.begin(), pig.triangles.begin() + std::ptrdiff_t(half)),
+    second(pig.triangles.begin() + std::ptrdiff_t(half), pig.triangles.end());
+  ST::IO::write_triangle_soup(folder + "/whole.stl", pig.points, pig.triangles);
+  ST::IO::write_triangle_soup(folder + "/front.stl", pig.points, first);
+  ST::IO::write_triangle_soup(folder + "/back.stl", pig.points, second);
+  const std::string tool = "'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair ";
+  const auto whole = soup_test::run_command(tool + "'" + folder + "/whole.stl' -o '" + folder +
+                                            "/whole.off' --tolerance 0.3 --tiles 4 2>&1");
+  ASSERT_EQ(whole.second, 0) << whole.first;
+  for(const std::string limit : {"--tiles 4", "--max-memory 1G"}) {
+    const auto parts = soup_test::run_command(tool + "'" + folder + "/front.stl' '" + folder + "/back.stl' -o '" + folder +
+                                              "/parts.off' --json --tolerance 0.3 " + limit + " 2>&1");
+    ASSERT_EQ(parts.second, 0) << parts.first;
+    EXPECT_NE(parts.first.find("front.stl " + folder + "/back.stl\""), std::string::npos) << parts.first;
+    EXPECT_EQ(soup_test::json_integer(parts.first, "input_triangles"), static_cast<long long>(pig.triangles.size()));
+    std::ifstream a(folder + "/whole.off"), b(folder + "/parts.off");
+    const std::string whole_text((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()),
+      parts_text((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    if(limit == "--tiles 4") {
+      EXPECT_EQ(whole_text, parts_text);
+    } else {
+      // In one tile: the same mesh, in the canonical order too.
+      EXPECT_EQ(soup_test::json_integer(parts.first, "tiles"), 1) << parts.first;
+      Soup x, y;
+      ST::IO::read_triangle_soup(folder + "/whole.off", x.points, x.triangles);
+      ST::IO::read_triangle_soup(folder + "/parts.off", y.points, y.triangles);
+      Canonical cx, cy;
+      ST::canonical_triangle_soup(x.points, x.triangles, cx.points, cx.triangles);
+      ST::canonical_triangle_soup(y.points, y.triangles, cy.points, cy.triangles);
+      EXPECT_TRUE(same(cx, cy));
+    }
+  }
+  const auto untiled = soup_test::run_command(tool + "'" + folder + "/front.stl' '" + folder + "/back.stl' -o '" + folder +
+                                              "/x.off' --tolerance 0.3 2>&1");
+  EXPECT_EQ(untiled.second, 2) << untiled.first;
+  EXPECT_NE(untiled.first.find("--tiles N or --max-memory"), std::string::npos) << untiled.first;
+  const auto mixed = soup_test::run_command(tool + "'" + folder + "/front.stl' '" + soup_test::data_file("cad/ALSTOM_TEST4.off") +
+                                            "' -o '" + folder + "/x.off' --tolerance 0.3 --tiles 2 2>&1");
+  EXPECT_EQ(mixed.second, 2) << mixed.first;
+  EXPECT_NE(mixed.first.find("not a binary STL"), std::string::npos) << mixed.first;
+  const auto onto_input = soup_test::run_command(tool + "'" + folder + "/front.stl' '" + folder + "/back.stl' -o '" + folder +
+                                                 "/back.stl' --tolerance 0.3 --tiles 2 2>&1");
+  EXPECT_EQ(onto_input.second, 2) << onto_input.first;
+  EXPECT_FALSE(std::filesystem::exists(folder + "/x.off"));
   std::filesystem::remove_all(folder);
 }
 

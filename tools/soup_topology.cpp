@@ -119,6 +119,8 @@ struct Usage_error : std::runtime_error
   "      --tiles N repairs the soup in N tiles, one after the other (a binary STL is streamed,\n"
   "      never held whole), with --tolerance T: the same triangles on the same points, in a\n"
   "      canonical order; the report gives the tiles' runs instead of the weld's counts.\n"
+  "      With --tiles N or --max-memory SIZE, IN may be several binary STL files, the parts of\n"
+  "      an assembly, streamed and repaired together as one soup.\n"
   "      --spill-folder DIR: where the tiles' spill files go (in a new folder, removed at the\n"
   "      end; default: the temporary directory).\n"
   "      --max-memory SIZE (e.g. 500M, 4G; with --tolerance T) keeps the peak resident memory\n"
@@ -403,6 +405,7 @@ struct Repair_options
   std::size_t threads = 0;       // --threads N; 0: all cores
   std::size_t tiles = 0;         // --tiles N; 0: the soup in memory
   std::string spill_folder;      // --spill-folder DIR; empty: the temporary directory
+  std::vector<std::string> more_inputs; // the other files of an assembly (binary STL, in tiles)
   std::optional<double> max_memory; // --max-memory SIZE, in bytes: the number of tiles is chosen
   ST::Orientation_policy orientation_policy = ST::Orientation_policy::BOUND_VOLUME;
   ST::Small_features small_features = ST::internal::small_features_policy(CGAL::parameters::default_values());
@@ -465,7 +468,7 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     else if(a == "--max-memory") o.max_memory = parse_memory(value());
     else if(!a.empty() && a[0] == '-') throw Usage_error("repair: unknown option '" + a + "'");
     else if(o.in.empty()) o.in = a;
-    else throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + a + "')");
+    else o.more_inputs.push_back(a);
   }
   if(o.in.empty()) throw Usage_error("repair: no input file");
   if(o.out.empty()) throw Usage_error("repair: no output file (-o OUT)");
@@ -475,6 +478,9 @@ Repair_options parse_repair_arguments(const std::vector<std::string>& args)
     throw Usage_error("repair: --tiles needs an absolute --tolerance T, and makes no --html page");
   if(o.max_memory && (o.tiles > 0 || !o.tolerance || !o.html_file.empty()))
     throw Usage_error("repair: --max-memory needs an absolute --tolerance T, and goes without --tiles N and --html");
+  if(!o.more_inputs.empty() && o.tiles == 0 && !o.max_memory)
+    throw Usage_error("repair: more than one input file ('" + o.in + "' and '" + o.more_inputs[0] +
+                      "'): the files of an assembly are repaired together with --tiles N or --max-memory SIZE");
   o.out_format = ST::IO::file_extension(o.out);
   if(o.out_format != "off" && o.out_format != "obj" && o.out_format != "ply" && o.out_format != "stl")
     throw Usage_error("repair: unknown output extension '" + o.out_format + "' (expected .off, .obj, .ply or .stl)");
@@ -752,6 +758,22 @@ std::size_t choose_tiles(const Tiled_memory_model& model, double limit)
                     mebibytes(model.peak(4096)));
 }
 
+// Every input file: IN, then the other files of an assembly.
+std::vector<std::string> all_inputs(const Repair_options& o)
+{
+  std::vector<std::string> files{o.in};
+  files.insert(files.end(), o.more_inputs.begin(), o.more_inputs.end());
+  return files;
+}
+
+// The inputs as the report names them: separated by spaces.
+std::string input_names(const Repair_options& o)
+{
+  std::string names = o.in;
+  for(const std::string& file : o.more_inputs) names += " " + file;
+  return names;
+}
+
 // The number of triangles of a binary STL (is_binary_stl() checked it).
 std::uint64_t binary_stl_triangles(const std::string& file)
 {
@@ -813,12 +835,22 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
     team.broadcast(path);
     const std::string folder(path.begin(), path.end());
     if(given == nullptr && is_binary_stl(o.in)) {
+      // The files of an assembly are streamed as one soup.
+      const std::vector<std::string> files = all_inputs(o);
+      double n = 0;
+      for(const std::string& file : files) {
+        if(!is_binary_stl(file))
+          throw Usage_error("repair: '" + file + "' is not a binary STL: the files of an assembly are streamed, each must be one");
+        n += double(binary_stl_triangles(file));
+      }
       if(o.max_memory) {
-        model = Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
+        model = Tiled_memory_model{n, 0.0};
         tiles = choose_tiles(*model, *o.max_memory);
       }
-      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Binary_STL_source({o.in}), tiles, folder, points, triangles, np);
+      t = ST::tiled_reconstruct_topology<Concurrency>(team, ST::Binary_STL_source(files), tiles, folder, points, triangles, np);
     } else {
+      if(!o.more_inputs.empty())
+        throw Usage_error("repair: '" + o.in + "' is not a binary STL: the files of an assembly are streamed, each must be one");
       // Only rank 0 reads the soup (the others never read the source).
       std::vector<Point> in_points;
       std::vector<Triangle> in_triangles;
@@ -845,7 +877,7 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
   const Written_soup written(o, points, triangles, progress);
   Report rep;
-  rep.add_string("input", o.in);
+  rep.add_string("input", input_names(o));
   rep.add_string("output", o.out);
   rep.add_string("format", format);
   rep.add("input_triangles", t.input_triangles);
@@ -883,12 +915,12 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
 {
   Repair_options o = parse_repair_arguments(args);
   if(!o.spill_folder.empty() && o.tiles == 0) throw Usage_error("repair: --spill-folder goes with --tiles N");
-  check_repair_paths(o.in, o.out, o.report_file);
+  for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
   ST::Single_process_team alone;
-  if(o.tiles > 0) return run_tiled_repair(o, alone);
+  if(o.tiles > 0 || !o.more_inputs.empty()) return run_tiled_repair(o, alone);
   // --max-memory: in tiles when the repair in memory would not fit (a binary STL is not read
   // for that: its header gives the number of triangles).
   Read_soup soup;
@@ -973,7 +1005,7 @@ Repair_options mpi_repair_options(const std::vector<std::string>& args, const ST
   Repair_options o = parse_repair_arguments(args);
   if(!o.tolerance) throw Usage_error("soup_topology_mpi: give an absolute --tolerance T");
   if(o.tiles == 0 && !o.max_memory) o.tiles = std::min<std::size_t>(4096, 4 * team.size());
-  check_repair_paths(o.in, o.out, o.report_file);
+  for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
   return o;
 }
 #endif
