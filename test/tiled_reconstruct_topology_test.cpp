@@ -616,7 +616,8 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   ASSERT_GT(expected.triangles.size(), 80000u);
   // Between the output's need and the whole soup's: tiles, the fewer the larger the limit.
   long long previous_tiles = 0;
-  for(const std::string limit : {"50M", "42M"}) {
+  std::filesystem::create_directory(folder + "/spill");
+  for(const std::string limit : {std::string("50M"), "42M --spill-folder '" + folder + "/spill'"}) {
     const auto tiled_run = repair(limit, folder + "/tiled.off");
     ASSERT_EQ(tiled_run.second, 0) << tiled_run.first;
     const long long tiles = soup_test::json_integer(tiled_run.first, "tiles");
@@ -627,6 +628,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
               soup_test::json_integer(tiled_run.first, "max_memory")) << tiled_run.first;
     EXPECT_TRUE(same(expected, canonical_of(folder + "/tiled.off"))) << limit;
   }
+  EXPECT_TRUE(std::filesystem::is_empty(folder + "/spill"));
   const auto too_small = repair("20M", folder + "/small.off");
   EXPECT_EQ(too_small.second, 2) << too_small.first;
   EXPECT_NE(too_small.first.find("too small"), std::string::npos) << too_small.first;

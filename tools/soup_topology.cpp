@@ -121,8 +121,8 @@ struct Usage_error : std::runtime_error
   "      canonical order; the report gives the tiles' runs instead of the weld's counts.\n"
   "      With --tiles N or --max-memory SIZE, IN may be several binary STL files, the parts of\n"
   "      an assembly, streamed and repaired together as one soup.\n"
-  "      --spill-folder DIR: where the tiles' spill files go (in a new folder, removed at the\n"
-  "      end; default: the temporary directory).\n"
+  "      --spill-folder DIR (with --tiles or --max-memory): where the tiles' spill files go (in\n"
+  "      a new folder, removed at the end; default: the temporary directory).\n"
   "      --max-memory SIZE (e.g. 500M, 4G; with --tolerance T) keeps the peak resident memory\n"
   "      under SIZE by a model of it: in memory when the soup fits, else in the fewest tiles\n"
   "      (a power of two) that fit; refused (exit 2) when SIZE is below what the merge and the\n"
@@ -914,7 +914,8 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
 [[maybe_unused]] int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
-  if(!o.spill_folder.empty() && o.tiles == 0) throw Usage_error("repair: --spill-folder goes with --tiles N");
+  if(!o.spill_folder.empty() && o.tiles == 0 && !o.max_memory)
+    throw Usage_error("repair: --spill-folder goes with --tiles N or --max-memory SIZE");
   for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();

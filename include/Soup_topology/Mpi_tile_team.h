@@ -6,6 +6,13 @@
 #ifndef SOUP_TOPOLOGY_MPI_TILE_TEAM_H
 #define SOUP_TOPOLOGY_MPI_TILE_TEAM_H
 
+// The C interface only: the deprecated C++ bindings are not used (and warn under -Wextra).
+#ifndef OMPI_SKIP_MPICXX
+#define OMPI_SKIP_MPICXX 1
+#endif
+#ifndef MPICH_SKIP_MPICXX
+#define MPICH_SKIP_MPICXX 1
+#endif
 #include <mpi.h>
 
 #include <cstddef>
