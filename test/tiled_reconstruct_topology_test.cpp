@@ -617,7 +617,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   // Between the output's need and the whole soup's: tiles, the fewer the larger the limit.
   long long previous_tiles = 0;
   std::filesystem::create_directory(folder + "/spill");
-  for(const std::string limit : {std::string("50M"), "42M --spill-folder '" + folder + "/spill'"}) {
+  for(const std::string& limit : {std::string("50M"), "42M --spill-folder '" + folder + "/spill'"}) {
     const auto tiled_run = repair(limit, folder + "/tiled.off");
     ASSERT_EQ(tiled_run.second, 0) << tiled_run.first;
     const long long tiles = soup_test::json_integer(tiled_run.first, "tiles");
