@@ -91,6 +91,9 @@ public:
     orient_patches();
     separate_fans<ConcurrencyTag>();
     find_closed_patches<ConcurrencyTag>();
+    // The steps left read the triangles, not their neighbours: tables of its own go first (the
+    // peak of the orientation is then the tables, not the tables and what comes after).
+    release_own_tables();
     choose_patch_orientations<ConcurrencyTag>();
     write_back<ConcurrencyTag>();
     return counts_;
@@ -109,6 +112,32 @@ private:
     own_tables_ = Adjacency_tables(); // the old tables go before the new ones are built
     own_tables_ = Adjacency_tables(triangles_, points_.size(), ConcurrencyTag());
     tables_ = &own_tables_;
+  }
+
+  void release_own_tables()
+  {
+    if(tables_ != &own_tables_) return;
+    own_tables_ = Adjacency_tables();
+    tables_ = nullptr;
+  }
+
+  // Vertex i of triangle t: from the tables while they are held, else from the triangles, which
+  // are the same until `write_back()`.
+  size_type vertex(size_type t, int i) const
+  {
+    if(tables_) return tables_->vertex(t, i);
+    return static_cast<size_type>(corner(triangles_[t], std::size_t(i), t));
+  }
+
+  // Vertex i of triangle t in the output: the vertex of its fan (`separate_fans()`).
+  std::size_t corner_vertex(size_type t, int i) const
+  {
+    const std::size_t c = 3 * std::size_t(t) + std::size_t(i);
+    if(!moved_corners_.empty()) {
+      const auto it = std::lower_bound(moved_corners_.begin(), moved_corners_.end(), std::make_pair(c, std::size_t(0)));
+      if(it != moved_corners_.end() && it->first == c) return it->second;
+    }
+    return vertex(t, i);
   }
 
   // --- Canonical order -------------------------------------------------------------------------
@@ -130,7 +159,7 @@ private:
   std::array<size_type, 3> canonical_key(size_type t)
   {
     const std::vector<size_type>& rank = point_ranks();
-    std::array<size_type, 3> k = {rank[tables_->vertex(t, 0)], rank[tables_->vertex(t, 1)], rank[tables_->vertex(t, 2)]};
+    std::array<size_type, 3> k = {rank[vertex(t, 0)], rank[vertex(t, 1)], rank[vertex(t, 2)]};
     std::sort(k.begin(), k.end());
     return k;
   }
@@ -428,11 +457,7 @@ private:
   template <class ConcurrencyTag>
   void separate_fans()
   {
-    const std::size_t n = tables_->number_of_triangles();
-    corner_vertex_.resize(3 * n);
-    for_each_index<ConcurrencyTag>(n, [&](std::size_t t) {
-      for(int i = 0; i < 3; ++i) corner_vertex_[3 * t + std::size_t(i)] = tables_->vertex(size_type(t), i);
-    });
+    moved_corners_.clear();
     const std::size_t vertices = tables_->number_of_vertices();
     std::vector<std::vector<size_type>> split_in_block(number_of_blocks(vertices, block_size));
     for_each_block<ConcurrencyTag>(vertices, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
@@ -465,8 +490,11 @@ private:
         ++counts_.duplicated_points;
       }
       for(std::size_t j = 0; j < around.size(); ++j)
-        corner_vertex_[3 * std::size_t(around[j]) + std::size_t(tables_->local_index(around[j], v))] = new_index[fan[j]];
+        if(new_index[fan[j]] != v)
+          moved_corners_.emplace_back(3 * std::size_t(around[j]) + std::size_t(tables_->local_index(around[j], v)),
+                                      new_index[fan[j]]);
     }
+    std::sort(moved_corners_.begin(), moved_corners_.end()); // a corner is moved once at most
   }
 
   // Whether edge i of t is shared by another triangle once the fans are separated. Only a
@@ -478,13 +506,13 @@ private:
     const std::size_t ti = 3 * std::size_t(t) + std::size_t(i);
     if(u == Adjacency_tables::border_edge || cut_[ti]) return false;
     if(u != Adjacency_tables::non_manifold_edge) return true;
-    const std::size_t a = corner_vertex_[ti], b = corner_vertex_[3 * std::size_t(t) + std::size_t((i + 1) % 3)];
+    const std::size_t a = corner_vertex(t, i), b = corner_vertex(t, (i + 1) % 3);
     around_edge.clear();
     tables_->triangles_around_edge(t, i, std::back_inserter(around_edge));
     for(size_type w : around_edge) {
       bool has_a = false, has_b = false;
       for(int k = 0; k < 3; ++k) {
-        const std::size_t c = corner_vertex_[3 * std::size_t(w) + std::size_t(k)];
+        const std::size_t c = corner_vertex(w, k);
         has_a = has_a || c == a;
         has_b = has_b || c == b;
       }
@@ -551,9 +579,9 @@ private:
     double volume = 0;
     for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
       const size_type t = patch_order_[k];
-      const std::array<double, 3>& a = xyz(tables_->vertex(t, 0));
-      const std::array<double, 3>& b = xyz(tables_->vertex(t, reversed_[t] ? 2 : 1));
-      const std::array<double, 3>& d = xyz(tables_->vertex(t, reversed_[t] ? 1 : 2));
+      const std::array<double, 3>& a = xyz(vertex(t, 0));
+      const std::array<double, 3>& b = xyz(vertex(t, reversed_[t] ? 2 : 1));
+      const std::array<double, 3>& d = xyz(vertex(t, reversed_[t] ? 1 : 2));
       volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
     }
     return volume;
@@ -568,7 +596,7 @@ private:
       const size_type t = patch_order_[k];
       std::array<double, 3> c[3];
       for(int i = 0; i < 3; ++i) {
-        const std::array<double, 3>& x = xyz(tables_->vertex(t, i));
+        const std::array<double, 3>& x = xyz(vertex(t, i));
         c[i] = {x[0] - q[0], x[1] - q[1], x[2] - q[2]};
       }
       if(reversed_[t]) std::swap(c[1], c[2]);
@@ -599,9 +627,9 @@ private:
       double largest = -1;
       for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
         const size_type t = patch_order_[k];
-        const std::array<double, 3>& a = xyz(tables_->vertex(t, 0));
-        const std::array<double, 3>& b = xyz(tables_->vertex(t, 1));
-        const std::array<double, 3>& d = xyz(tables_->vertex(t, 2));
+        const std::array<double, 3>& a = xyz(vertex(t, 0));
+        const std::array<double, 3>& b = xyz(vertex(t, 1));
+        const std::array<double, 3>& d = xyz(vertex(t, 2));
         for(const std::array<double, 3>* x : {&a, &b, &d})
           for(std::size_t i = 0; i < 3; ++i) {
             box[c][i] = std::min(box[c][i], (*x)[i]);
@@ -691,11 +719,17 @@ private:
   template <class ConcurrencyTag>
   void write_back()
   {
-    const std::size_t n = tables_->number_of_triangles();
+    const std::size_t n = triangles_.size();
     std::vector<std::size_t> flips(number_of_blocks(n, block_size), 0);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      // the moved corners of the block, walked along with its triangles
+      auto moved = std::lower_bound(moved_corners_.begin(), moved_corners_.end(), std::make_pair(3 * begin, std::size_t(0)));
       for(std::size_t t = begin; t != end; ++t) {
-        const std::size_t* c = &corner_vertex_[3 * t];
+        std::size_t c[3];
+        for(int i = 0; i < 3; ++i) {
+          if(moved != moved_corners_.end() && moved->first == 3 * t + std::size_t(i)) c[i] = (moved++)->second;
+          else c[i] = vertex(size_type(t), i);
+        }
         const bool reverse = (reversed_[t] != 0) != (turn_[patch_[t]] != 0);
         if(reverse) ++flips[b];
         if(reverse) assign_triangle(triangles_[t], c[0], c[2], c[1]);
@@ -718,7 +752,9 @@ private:
   std::vector<size_type> patch_;
   std::vector<size_type> patch_order_;   // the triangles, patch after patch
   std::vector<std::size_t> patch_begin_; // patch p is patch_order_[patch_begin_[p], patch_begin_[p + 1])
-  std::vector<std::size_t> corner_vertex_;
+  // the corners whose fan got a copy of their vertex (`separate_fans()`): (3 t + i, the copy),
+  // sorted; every other corner keeps its vertex
+  std::vector<std::pair<std::size_t, std::size_t>> moved_corners_;
   std::vector<std::array<double, 3>> xyz_;
 };
 
