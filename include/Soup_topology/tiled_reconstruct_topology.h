@@ -92,7 +92,13 @@ inline void merge_in_canonical_order(std::vector<Soup_part>& parts, std::vector<
   for(std::size_t i = 0; i < total; ++i) order[i] = static_cast<std::uint32_t>(i);
   std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return all[x] < all[y]; });
   std::vector<std::uint32_t> global(total);
+  // The output points at their exact number: growing them by doubling would hold up to twice as
+  // many through the steps after the merge (a third of the orientation's peak at 40M triangles).
+  std::size_t distinct = 0;
+  for(std::size_t k = 0; k < total; ++k) distinct += (k == 0 || all[order[k - 1]] != all[order[k]]) ? 1 : 0;
   points.clear();
+  points.shrink_to_fit();
+  points.reserve(distinct);
   for(std::size_t k = 0; k < total; ++k) {
     const std::array<double, 3>& q = all[order[k]];
     if(k == 0 || all[order[k - 1]] != q) points.emplace_back(q[0], q[1], q[2]);
