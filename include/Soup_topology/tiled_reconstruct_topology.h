@@ -312,6 +312,173 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   return run;
 }
 
+/// the settings of the repair of every tile, from the named parameters of
+/// `tiled_reconstruct_topology()` (checked).
+struct Tiled_repair_settings
+{
+  double tolerance = 0;
+  std::size_t max_rounds = 8;
+  bool do_split = true;
+  Small_features policy = Small_features::COLLAPSE;
+};
+
+template <class NamedParameters>
+Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+  static_assert(!is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value,
+                "tiled_reconstruct_topology: give the absolute tolerance (snapping_tolerance)");
+  static_assert(is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value &&
+                  !has_vertex_tolerance_map<NamedParameters>(),
+                "tiled_reconstruct_topology: one absolute tolerance only (snapping_tolerance)");
+  Tiled_repair_settings settings;
+  settings.tolerance = CGAL::to_double(get_parameter(np, CGAL::internal_np::snapping_tolerance));
+  if(!(settings.tolerance >= 0) || !std::isfinite(4 * settings.tolerance * settings.tolerance))
+    throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
+  settings.max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
+  settings.do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
+  settings.policy = small_features_policy(np);
+  if(!is_default_parameter<NamedParameters, internal_np::tile_halo_t>::value) {
+    const double given = choose_parameter(get_parameter(np, internal_np::tile_halo), 1.0);
+    if(!(given > 0) || !std::isfinite(given)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
+  }
+  return settings;
+}
+
+/// the plan of the tiles, with the halo of the first runs: rank 0 plans and spills `source` into
+/// `folder` (and counts the halo triangles into `report`), then sends the plan to the others.
+///
+/// The halo of the first runs: the taint of a region starts at its edge, where the stars are
+/// cut, spreads by about one star in the first weld, and further only through decisions taken
+/// near tainted points (the design page): four mean edges cover the jittered seams measured. The
+/// check grows it where that is not enough. The mean edge length comes with the plan.
+template <class TileTeam, class TriangleSource, class NamedParameters>
+Tile_plan plan_and_spill(TileTeam& team, const TriangleSource& source, std::size_t number_of_tiles,
+                         const std::string& folder, double tolerance, const NamedParameters& np,
+                         Tiled_reconstruction_report& report)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  Tile_plan plan;
+  if(team.rank() == 0) {
+    plan = plan_tiles(source, number_of_tiles, 0);
+    const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
+    plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
+    const Tile_files files = write_tile_files(source, plan, folder);
+    for(std::size_t h : files.halo) report.halo_triangles += h;
+  }
+  if(team.size() > 1) {
+    // The plan, once the spill files are written.
+    std::vector<char> bytes;
+    if(team.rank() == 0) bytes = plan.to_bytes();
+    team.broadcast(bytes);
+    if(team.rank() != 0) plan = Tile_plan::from_bytes(bytes);
+  }
+  return plan;
+}
+
+/// how a run of a tile ended.
+enum Tile_outcome : std::uint64_t { kept_clean, tainted_owned, degenerate_under_collapse, crowded };
+
+/// this process's runs of a round: the tiles at positions `rank`, `rank + size`, ... of `to_do`,
+/// each repaired from its spill file (then removed) with the halo `halo`. The owned triangles of
+/// a clean run are kept in `kept` by a process alone, else written to the tile's part file.
+/// Returns four values a run: its position in `to_do`, its `Tile_outcome`, the size of its
+/// region, its tainted owned triangles. A process stops at its first run that needs the whole
+/// soup: `walk_round_outcomes()` stops there, or before.
+template <class ConcurrencyTag, class TileTeam, class Progress>
+std::vector<std::uint64_t> repair_round_share(TileTeam& team, const Tile_plan& plan, const std::vector<std::size_t>& to_do,
+                                              const std::string& folder, double halo, const Tiled_repair_settings& settings,
+                                              std::vector<Soup_part>& kept, Tile_progress& where, const Progress& progress)
+{
+  std::vector<std::uint64_t> runs;
+  std::vector<Tile_corners> region;
+  where.runs_done = 0;
+  where.runs = to_do.size() > team.rank() ? (to_do.size() - team.rank() + team.size() - 1) / team.size() : 0;
+  for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) {
+    const std::size_t tile = to_do[k];
+    const std::string file = tile_file_name(folder, tile);
+    region.clear();
+    for(const Tile_triangle& t : read_tile_file(file)) region.push_back(t.corners);
+    std::remove(file.c_str());
+    Tile_run run = repair_tile_region<ConcurrencyTag>(region, plan, tile, halo, settings.tolerance, settings.max_rounds,
+                                                      settings.do_split, settings.policy);
+    const Tile_outcome outcome = run.degenerate_under_collapse ? degenerate_under_collapse
+                                 : run.crowded                 ? crowded
+                                 : run.tainted_owned == 0      ? kept_clean
+                                                               : tainted_owned;
+    runs.insert(runs.end(), {k, outcome, region.size(), run.tainted_owned});
+    ++where.runs_done;
+    if(outcome == kept_clean) where.triangles_done += plan.owned_triangles(tile);
+    progress(where);
+    if(outcome == kept_clean) {
+      if(team.size() == 1)
+        kept.push_back(std::move(run.owned));
+      else
+        write_part_file(part_file_name(folder, tile), run.owned);
+    }
+    if(outcome == degenerate_under_collapse || outcome == crowded) break;
+  }
+  return runs;
+}
+
+/// the runs of a round (`repair_round_share()`'s values, of every process) walked in the order
+/// of `to_do`, as one process runs them: counted into `report`; returns the tiles to repair
+/// again, or sets `whole` (with `report.whole_soup_reason`) at the first run that needs the
+/// whole soup.
+inline std::vector<std::size_t> walk_round_outcomes(const std::vector<std::uint64_t>& runs, const std::vector<std::size_t>& to_do,
+                                                    Tiled_reconstruction_report& report, bool& whole)
+{
+  constexpr std::uint64_t not_run = static_cast<std::uint64_t>(-1);
+  std::vector<std::array<std::uint64_t, 3>> by_position(to_do.size(), {{not_run, 0, 0}});
+  for(std::size_t r = 0; r + 3 < runs.size(); r += 4) by_position[runs[r]] = {{runs[r + 1], runs[r + 2], runs[r + 3]}};
+  std::vector<std::size_t> tainted;
+  for(std::size_t k = 0; k < to_do.size(); ++k) {
+    const std::array<std::uint64_t, 3>& run = by_position[k];
+    if(run[0] == not_run) throw std::logic_error("tiled_reconstruct_topology: a tile of the round was not repaired");
+    report.largest_tile_triangles = std::max(report.largest_tile_triangles, std::size_t(run[1]));
+    ++report.tile_runs;
+    if(run[0] == degenerate_under_collapse) {
+      whole = true;
+      report.whole_soup_reason = "a degenerate triangle under Small_features::COLLAPSE (its flips are not tiled)";
+      break;
+    }
+    if(run[0] == crowded) {
+      whole = true;
+      report.whole_soup_reason = "a crowd of points within the tolerance of each other (more than " +
+                                 std::to_string(Tile_taint<CGAL::Epick>::crowd_budget) +
+                                 " points read a point of a tile in a phase of its taint)";
+      break;
+    }
+    if(run[0] == tainted_owned) {
+      report.discarded_triangles += std::size_t(run[2]);
+      tainted.push_back(to_do[k]);
+    }
+  }
+  return tainted;
+}
+
+/// the soup repaired as one tile holding everything, deep enough that nothing is tainted (the
+/// spill files left in `folder` removed first).
+template <class ConcurrencyTag, class TriangleSource>
+Soup_part repair_whole_soup(const TriangleSource& source, const Tile_plan& plan, const std::string& folder,
+                            const Tiled_repair_settings& settings, Tiled_reconstruction_report& report)
+{
+  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(tile_file_name(folder, tile).c_str());
+  const Tile_plan one = plan_tiles(source, 1, 0);
+  std::vector<Tile_corners> region;
+  source.for_each([&](const Tile_corners& c, std::uint64_t) { region.push_back(c); });
+  report.whole_soup = true;
+  ++report.tile_runs;
+  report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
+  const double deep = 4 * (one.side() + settings.tolerance);
+  return repair_tile_region<ConcurrencyTag>(region, one, 0, deep, settings.tolerance, settings.max_rounds, settings.do_split,
+                                            settings.policy, true)
+    .owned;
+}
+
 } // namespace internal
 
 /// \ingroup PkgSoupTopologyTiling
@@ -393,50 +560,15 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  using CGAL::parameters::is_default_parameter;
-  static_assert(!is_default_parameter<NamedParameters, CGAL::internal_np::snapping_tolerance_t>::value,
-                "tiled_reconstruct_topology: give the absolute tolerance (snapping_tolerance)");
-  static_assert(is_default_parameter<NamedParameters, internal_np::relative_tolerance_t>::value &&
-                  !internal::has_vertex_tolerance_map<NamedParameters>(),
-                "tiled_reconstruct_topology: one absolute tolerance only (snapping_tolerance)");
-  const double tolerance = CGAL::to_double(get_parameter(np, CGAL::internal_np::snapping_tolerance));
-  if(!(tolerance >= 0) || !std::isfinite(4 * tolerance * tolerance))
-    throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
-  const std::size_t max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
-  const bool do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
-  const Small_features policy = internal::small_features_policy(np);
-  constexpr bool default_halo = is_default_parameter<NamedParameters, internal_np::tile_halo_t>::value;
-  if(!default_halo) {
-    const double given = choose_parameter(get_parameter(np, internal_np::tile_halo), 1.0);
-    if(!(given > 0) || !std::isfinite(given)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
-  }
+  const internal::Tiled_repair_settings settings = internal::tiled_repair_settings(np);
   if(number_of_tiles == 0) throw Invalid_input("plan_tiles: at least one tile is needed");
   const bool root = team.rank() == 0, alone = team.size() == 1;
   auto progress =
     choose_parameter(get_parameter(np, internal_np::tile_progress), [](const Tile_progress&) {});
 
   Tiled_reconstruction_report report;
-  report.tolerance = tolerance;
-  // The halo of the first runs. The taint of a region starts at its edge, where the stars are cut,
-  // spreads by about one star in the first weld, and further only through decisions taken near
-  // tainted points (the design page): four mean edges cover the jittered seams measured. The
-  // check grows it where that is not enough. The mean edge length comes with the plan.
-  Tile_plan plan;
-  Tile_files files;
-  if(root) {
-    plan = plan_tiles(source, number_of_tiles, 0);
-    const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
-    plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
-    files = write_tile_files(source, plan, folder);
-    for(std::size_t h : files.halo) report.halo_triangles += h;
-  }
-  if(!alone) {
-    // The plan, once the spill files are written.
-    std::vector<char> bytes;
-    if(root) bytes = plan.to_bytes();
-    team.broadcast(bytes);
-    if(!root) plan = Tile_plan::from_bytes(bytes);
-  }
+  report.tolerance = settings.tolerance;
+  const Tile_plan plan = internal::plan_and_spill(team, source, number_of_tiles, folder, settings.tolerance, np, report);
   const double halo = plan.halo();
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
@@ -445,81 +577,26 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   // Rounds: every tile to do is repaired from its spill file; the tiles with a tainted owned
   // triangle are spilled again, together in one stream of the source, with the halo doubled.
   std::vector<internal::Soup_part> kept;
-  std::vector<Tile_corners> region;
   std::vector<std::size_t> to_do(plan.number_of_tiles());
   for(std::size_t tile = 0; tile < to_do.size(); ++tile) to_do[tile] = tile;
   // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
-  const double enough = 4 * (plan.side() + tolerance) + halo;
+  const double enough = 4 * (plan.side() + settings.tolerance) + halo;
   bool whole = false;
   Tile_progress where;
   for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) where.triangles += plan.owned_triangles(to_do[k]);
-  enum Outcome : std::uint64_t { kept_clean, tainted_owned, degenerate_under_collapse, crowded };
   for(double h = halo; !to_do.empty() && !whole; h *= 2) {
     report.largest_halo = std::max(report.largest_halo, h);
-    // This process's runs, four values each: the position in `to_do`, the outcome, the size of
-    // the region, the tainted owned triangles. A process stops at its first run that needs the
-    // whole soup: the walk below stops there, or before.
-    std::vector<std::uint64_t> runs;
-    where.runs_done = 0;
-    where.runs = to_do.size() > team.rank() ? (to_do.size() - team.rank() + team.size() - 1) / team.size() : 0;
-    for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) {
-      const std::size_t tile = to_do[k];
-      const std::string file = internal::tile_file_name(folder, tile);
-      region.clear();
-      for(const Tile_triangle& t : read_tile_file(file)) region.push_back(t.corners);
-      std::remove(file.c_str());
-      internal::Tile_run run =
-        internal::repair_tile_region<ConcurrencyTag>(region, plan, tile, h, tolerance, max_rounds, do_split, policy);
-      const Outcome outcome = run.degenerate_under_collapse ? degenerate_under_collapse
-                              : run.crowded                 ? crowded
-                              : run.tainted_owned == 0      ? kept_clean
-                                                            : tainted_owned;
-      runs.insert(runs.end(), {k, outcome, region.size(), run.tainted_owned});
-      ++where.runs_done;
-      if(outcome == kept_clean) where.triangles_done += plan.owned_triangles(tile);
-      progress(where);
-      if(outcome == kept_clean) {
-        if(alone)
-          kept.push_back(std::move(run.owned));
-        else
-          internal::write_part_file(internal::part_file_name(folder, tile), run.owned);
-      }
-      if(outcome == degenerate_under_collapse || outcome == crowded) break;
-    }
+    std::vector<std::uint64_t> runs =
+      internal::repair_round_share<ConcurrencyTag>(team, plan, to_do, folder, h, settings, kept, where, progress);
     if(!alone) runs = team.all_gather(runs);
-    constexpr std::uint64_t not_run = static_cast<std::uint64_t>(-1);
-    std::vector<std::array<std::uint64_t, 3>> by_position(to_do.size(), {{not_run, 0, 0}});
-    for(std::size_t r = 0; r + 3 < runs.size(); r += 4) by_position[runs[r]] = {{runs[r + 1], runs[r + 2], runs[r + 3]}};
-    std::vector<std::size_t> tainted;
-    for(std::size_t k = 0; k < to_do.size(); ++k) {
-      const std::array<std::uint64_t, 3>& run = by_position[k];
-      if(run[0] == not_run) throw std::logic_error("tiled_reconstruct_topology: a tile of the round was not repaired");
-      report.largest_tile_triangles = std::max(report.largest_tile_triangles, std::size_t(run[1]));
-      ++report.tile_runs;
-      if(run[0] == degenerate_under_collapse) {
-        whole = true;
-        report.whole_soup_reason = "a degenerate triangle under Small_features::COLLAPSE (its flips are not tiled)";
-        break;
-      }
-      if(run[0] == crowded) {
-        whole = true;
-        report.whole_soup_reason = "a crowd of points within the tolerance of each other (more than " +
-                                   std::to_string(internal::Tile_taint<CGAL::Epick>::crowd_budget) +
-                                   " points read a point of a tile in a phase of its taint)";
-        break;
-      }
-      if(run[0] == tainted_owned) {
-        report.discarded_triangles += std::size_t(run[2]);
-        tainted.push_back(to_do[k]);
-      }
-    }
+    std::vector<std::size_t> tainted = internal::walk_round_outcomes(runs, to_do, report, whole);
     if(whole || tainted.empty()) break;
     if(h == halo) report.repeated_tiles = tainted.size();
     if(h > enough) throw std::logic_error("tiled_reconstruct_topology: a region holding the whole soup is tainted");
     if(root) {
       std::vector<char> wanted(plan.number_of_tiles(), 0);
       for(std::size_t tile : tainted) wanted[tile] = 1;
-      files = write_tile_files(source, plan.with_halo(2 * h), folder, &wanted);
+      write_tile_files(source, plan.with_halo(2 * h), folder, &wanted);
     }
     if(!alone) {
       std::vector<char> spilled; // the spill files of the next round are written
@@ -528,7 +605,6 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
     to_do.swap(tainted);
     ++where.round;
   }
-  std::vector<Tile_corners>().swap(region);
   points.clear();
   triangles.clear();
   if(!root) return report;
@@ -541,20 +617,8 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
     }
   }
   if(whole) {
-    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile)
-      std::remove(internal::tile_file_name(folder, tile).c_str());
-    // One tile holding everything, deep enough that nothing is tainted.
-    Tile_plan one = plan_tiles(source, 1, 0);
-    region.clear();
-    source.for_each([&](const Tile_corners& c, std::uint64_t) { region.push_back(c); });
-    report.whole_soup = true;
-    ++report.tile_runs;
-    report.largest_tile_triangles = std::max(report.largest_tile_triangles, region.size());
-    const double deep = 4 * (one.side() + tolerance);
     kept.clear();
-    kept.push_back(
-      internal::repair_tile_region<ConcurrencyTag>(region, one, 0, deep, tolerance, max_rounds, do_split, policy, true).owned);
-    std::vector<Tile_corners>().swap(region);
+    kept.push_back(internal::repair_whole_soup<ConcurrencyTag>(source, plan, folder, settings, report));
   }
   internal::merge_in_canonical_order(kept, points, triangles);
   report.output_points = points.size();
