@@ -707,6 +707,92 @@ TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
   }
 }
 
+TEST(ParallelRobustnessSoup, NonManifoldVerticesSeparatedInEveryBlock)
+{
+  // A chain of 3,000 closed cubes, cube n on [n, n + 1]^3, consecutive cubes sharing one corner:
+  // 2,999 non-manifold vertices, the triangles shuffled so that the corners to move lie in every
+  // block. The fan with the canonically smallest triangle (the lower cube) keeps each shared
+  // point; the upper cube's corners move to a copy, and the copies are appended in the order of
+  // the shared vertices. Every thread count, with and without the tables at hand, gives that.
+  constexpr std::size_t cubes = 3000;
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::vector<std::size_t> shared; // shared[n]: the corner of cubes n and n + 1
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::size_t lowest = 0; // the index of corner (n, n, n) of cube n
+  for(std::size_t n = 0; n < cubes; ++n) {
+    std::array<std::size_t, 8> corner;
+    for(int c = 0; c < 8; ++c) {
+      if(c == 0 && n > 0) {
+        corner[0] = lowest;
+        continue;
+      }
+      corner[std::size_t(c)] = points.size();
+      points.emplace_back(double(n) + (c & 1), double(n) + ((c >> 1) & 1), double(n) + ((c >> 2) & 1));
+    }
+    if(n + 1 < cubes) shared.push_back(corner[7]);
+    lowest = corner[7];
+    for(const auto& q : quads) {
+      triangles.push_back({corner[std::size_t(q[0])], corner[std::size_t(q[1])], corner[std::size_t(q[2])]});
+      triangles.push_back({corner[std::size_t(q[0])], corner[std::size_t(q[2])], corner[std::size_t(q[3])]});
+    }
+  }
+  std::mt19937 rng(5);
+  std::shuffle(triangles.begin(), triangles.end(), rng);
+  ASSERT_GT(triangles.size(), 2 * ST::internal::default_block_size);
+  const std::size_t input_points = points.size();
+  // What the separation must give, checked on the sequential result: the copies in the order of
+  // the shared vertices, the upper cube's corners on the copy, every cube closed and outward.
+  auto ep = points;
+  auto et = triangles;
+  const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et);
+  EXPECT_EQ(expected.duplicated_points, cubes - 1);
+  EXPECT_EQ(expected.duplicate_triangles, 0u);
+  ASSERT_EQ(ep.size(), input_points + cubes - 1);
+  for(std::size_t k = 0; k + 1 < cubes; ++k) EXPECT_EQ(ep[input_points + k], ep[shared[k]]) << k;
+  std::vector<double> volume(cubes, 0.0);
+  for(const Triangle& t : et) {
+    const Point& a = ep[t[0]];
+    const Point& b = ep[t[1]];
+    const Point& c = ep[t[2]];
+    // the mean of the centroid's coordinates lies strictly within (n, n + 1) on cube n's faces
+    const double mean = (a.x() + b.x() + c.x() + a.y() + b.y() + c.y() + a.z() + b.z() + c.z()) / 9;
+    const std::size_t cube = static_cast<std::size_t>(std::floor(mean));
+    ASSERT_LT(cube, cubes);
+    for(std::size_t v : t) {
+      if(v < input_points) {
+        // a shared point stays only on the lower cube
+        const auto at = std::find(shared.begin(), shared.end(), v);
+        if(at != shared.end()) EXPECT_EQ(std::size_t(at - shared.begin()), cube);
+      } else {
+        EXPECT_EQ(v - input_points + 1, cube) << "a copy on the upper cube of its shared vertex";
+      }
+    }
+    volume[cube] += CGAL::to_double(CGAL::volume(Point(0, 0, 0), a, b, c));
+  }
+  for(std::size_t n = 0; n < cubes; ++n) EXPECT_NEAR(volume[n], 1.0, 1e-9) << n;
+  const ST::Adjacency_tables output(et, ep.size());
+  EXPECT_TRUE(output.non_manifold_vertices().empty());
+  EXPECT_EQ(output.number_of_border_edges(), 0u);
+  EXPECT_EQ(output.number_of_connected_components(), cubes);
+  for_each_thread_count([&](int) {
+    auto p = points;
+    auto t = triangles;
+    const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t);
+    EXPECT_EQ(r.duplicated_points, expected.duplicated_points);
+    EXPECT_EQ(r.orientation_flips, expected.orientation_flips);
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+    auto q = points;
+    auto u = triangles;
+    const ST::Adjacency_tables tables(u, q.size(), Parallel());
+    const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables);
+    EXPECT_EQ(w.duplicated_points, expected.duplicated_points);
+    EXPECT_EQ(bits(q), bits(ep));
+    EXPECT_EQ(u, et);
+  });
+}
+
 TEST(ParallelRobustnessSoup, ExactKernelAndCollapsedTriangles)
 {
   // Epeck: the tables and the bookkeeping run in parallel, the geometric steps sequentially.
