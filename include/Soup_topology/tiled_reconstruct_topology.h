@@ -95,7 +95,7 @@ inline void merge_in_canonical_order(std::vector<Soup_part>& parts, std::vector<
   // The output points at their exact number: growing them by doubling would hold up to twice as
   // many through the steps after the merge (a third of the orientation's peak at 40M triangles).
   std::size_t distinct = 0;
-  for(std::size_t k = 0; k < total; ++k) distinct += (k == 0 || all[order[k - 1]] != all[order[k]]) ? 1 : 0;
+  for(std::size_t k = 0; k < total; ++k) distinct += std::size_t(k == 0 || all[order[k - 1]] != all[order[k]]);
   points.clear();
   points.shrink_to_fit();
   points.reserve(distinct);

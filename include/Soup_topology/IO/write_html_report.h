@@ -328,8 +328,8 @@ inline Html_point html_center(const std::vector<Html_point>& points)
   if(points.empty()) return origin;
   Html_point low = points.front(), high = points.front();
   for(const Html_point& p : points)
-    for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
-  for(int c = 0; c < 3; ++c) origin[c] = (low[c] + high[c]) / 2;
+    for(std::size_t c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
+  for(std::size_t c = 0; c < 3; ++c) origin[c] = (low[c] + high[c]) / 2;
   return origin;
 }
 
@@ -411,7 +411,7 @@ inline void write_html_display_mesh(std::ostream& os, const Html_display_mesh& d
   std::vector<float> positions;
   positions.reserve(3 * display.points.size());
   for(const Html_point& p : display.points)
-    for(int c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - origin[c]));
+    for(std::size_t c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - origin[c]));
   std::vector<std::uint32_t> indices;
   indices.reserve(3 * display.triangles.size());
   for(const Html_triangle& t : display.triangles) indices.insert(indices.end(), t.begin(), t.end());

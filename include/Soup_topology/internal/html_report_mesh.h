@@ -82,7 +82,7 @@ inline std::vector<Html_hole> html_holes(const std::vector<Html_point>& points, 
     if(used[first]) continue;
     Html_hole hole;
     Html_point low{}, high{};
-    for(int c = 0; c < 3; ++c) {
+    for(std::size_t c = 0; c < 3; ++c) {
       low[c] = std::numeric_limits<double>::infinity();
       high[c] = -std::numeric_limits<double>::infinity();
     }
@@ -105,14 +105,14 @@ inline std::vector<Html_hole> html_holes(const std::vector<Html_point>& points, 
       const Html_point& a = points[border[2 * e]];
       const Html_point& b = points[border[2 * e + 1]];
       hole.length += html_distance(a, b);
-      for(int c = 0; c < 3; ++c) {
+      for(std::size_t c = 0; c < 3; ++c) {
         low[c] = std::min({low[c], a[c], b[c]});
         high[c] = std::max({high[c], a[c], b[c]});
       }
     }
     hole.edges = chain.size();
     hole.size = html_distance(low, high);
-    for(int c = 0; c < 3; ++c) hole.center[c] = (low[c] + high[c]) / 2;
+    for(std::size_t c = 0; c < 3; ++c) hole.center[c] = (low[c] + high[c]) / 2;
     holes.push_back(hole);
   }
   std::stable_sort(holes.begin(), holes.end(),
@@ -146,12 +146,12 @@ inline double html_first_cell_size(const std::vector<Html_point>& points, const 
                                    std::size_t limit, Html_point& low)
 {
   Html_point high{};
-  for(int c = 0; c < 3; ++c) {
+  for(std::size_t c = 0; c < 3; ++c) {
     low[c] = std::numeric_limits<double>::infinity();
     high[c] = -std::numeric_limits<double>::infinity();
   }
   for(const Html_point& p : points)
-    for(int c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
+    for(std::size_t c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
   double area = 0;
   for(const Html_triangle& t : triangles) {
     const Html_point &p = points[t[0]], &q = points[t[1]], &r = points[t[2]];
@@ -175,7 +175,7 @@ inline void html_cluster_vertices(const std::vector<Html_point>& points, const s
   std::unordered_map<std::uint64_t, std::uint32_t> cell_cluster;
   std::vector<Html_point> sums;
   std::vector<std::uint32_t> members;
-  const auto grid = [&](double x, int c) {
+  const auto grid = [&](double x, std::size_t c) {
     return static_cast<std::uint64_t>(std::min(std::floor((x - low[c]) / cell), 2097151.0)) & 0x1FFFFF;
   };
   cluster.resize(points.size());
@@ -188,7 +188,7 @@ inline void html_cluster_vertices(const std::vector<Html_point>& points, const s
     }
     if(id == sums.size()) { sums.push_back({0, 0, 0}); members.push_back(0); }
     cluster[v] = id;
-    for(int c = 0; c < 3; ++c) sums[id][c] += p[c];
+    for(std::size_t c = 0; c < 3; ++c) sums[id][c] += p[c];
     ++members[id];
   }
   display.triangles.clear();
@@ -198,7 +198,7 @@ inline void html_cluster_vertices(const std::vector<Html_point>& points, const s
   }
   display.points.resize(sums.size());
   for(std::size_t i = 0; i < sums.size(); ++i)
-    for(int c = 0; c < 3; ++c) display.points[i][c] = members[i] ? sums[i][c] / members[i] : 0;
+    for(std::size_t c = 0; c < 3; ++c) display.points[i][c] = members[i] ? sums[i][c] / members[i] : 0;
 }
 
 /// the display mesh of a soup: the soup itself when it has at most `limit` triangles; otherwise
