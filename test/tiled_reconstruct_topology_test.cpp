@@ -138,6 +138,59 @@ TEST(TiledReconstruction, JitteredSeamsOfRealMeshesForOneToSixtyFourTiles)
   }
 }
 
+// The generated soup of the issue: an exploded torus of 4,000,000 triangles (2,000 x 1,000 quads
+// of major radius 1 and minor radius 0.4, every triangle with its own copies of its corners, each
+// coordinate moved by up to 1e-6 of the diagonal), repaired in memory and in 2, 8 and 64 tiles
+// (on TBB's threads, which give the sequential result): the same mesh each time, closed.
+TEST(TiledReconstruction, GeneratedFourMillionTriangleSoupInTwoEightAndSixtyFourTiles)
+{
+  using Parallel = CGAL::Parallel_if_available_tag;
+  constexpr unsigned nu = 2000, nv = 1000;
+  const double pi = std::acos(-1.0), major = 1, minor = 0.4;
+  const double torus_diagonal = std::sqrt(2 * CGAL::square(2 * (major + minor)) + CGAL::square(2 * minor));
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> move(-1e-6 * torus_diagonal, 1e-6 * torus_diagonal);
+  Soup soup;
+  soup.points.reserve(6 * std::size_t(nu) * nv);
+  soup.triangles.reserve(2 * std::size_t(nu) * nv);
+  const auto corner = [&](unsigned i, unsigned j) {
+    const double a = 2 * pi * (i % nu) / nu, b = 2 * pi * (j % nv) / nv, w = major + minor * std::cos(b);
+    soup.points.emplace_back(w * std::cos(a) + move(rng), w * std::sin(a) + move(rng), minor * std::sin(b) + move(rng));
+    return soup.points.size() - 1;
+  };
+  for(unsigned i = 0; i < nu; ++i)
+    for(unsigned j = 0; j < nv; ++j) {
+      const std::size_t a = corner(i, j), b = corner(i + 1, j), c = corner(i + 1, j + 1);
+      soup.triangles.push_back({a, b, c});
+      const std::size_t d = corner(i, j), e = corner(i + 1, j + 1), f = corner(i, j + 1);
+      soup.triangles.push_back({d, e, f});
+    }
+  ASSERT_EQ(soup.triangles.size(), 4000000u);
+  // Above the jitter (at most 3.5e-6 of the diagonal between two copies), far below the edges.
+  const auto np = CGAL::parameters::snapping_tolerance(1.2e-5 * torus_diagonal);
+  Canonical expected;
+  {
+    Soup repaired = soup;
+    const ST::Reconstruction_report r = ST::reconstruct_topology<Parallel>(repaired.points, repaired.triangles, np);
+    EXPECT_EQ(r.border_edges_after, 0u);
+    ST::canonical_triangle_soup(repaired.points, repaired.triangles, expected.points, expected.triangles);
+  }
+  ASSERT_EQ(expected.triangles.size(), 4000000u);
+  EXPECT_EQ(expected.points.size(), 2000000u);
+  for(std::size_t tiles : {2, 8, 64}) {
+    const std::string folder = soup_test::temporary_folder("tiled_4m");
+    Canonical got;
+    const ST::Tiled_reconstruction_report report = ST::tiled_reconstruct_topology<Parallel>(
+      ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>>(soup.points, soup.triangles), tiles, folder,
+      got.points, got.triangles, np);
+    EXPECT_TRUE(same(expected, got)) << tiles << " tiles";
+    EXPECT_EQ(report.tiles, tiles);
+    EXPECT_FALSE(report.whole_soup) << report.whole_soup_reason;
+    EXPECT_TRUE(std::filesystem::is_empty(folder));
+    std::filesystem::remove_all(folder);
+  }
+}
+
 TEST(TiledReconstruction, ShuffledSoupGivesTheSameOutput)
 {
   const Soup soup = jittered_seams("clean/elephant.off", 4, 1e-6, 9);
