@@ -763,7 +763,9 @@ TEST(ParallelRobustnessSoup, NonManifoldVerticesSeparatedInEveryBlock)
       if(v < input_points) {
         // a shared point stays only on the lower cube
         const auto at = std::find(shared.begin(), shared.end(), v);
-        if(at != shared.end()) EXPECT_EQ(std::size_t(at - shared.begin()), cube);
+        if(at != shared.end()) {
+          EXPECT_EQ(std::size_t(at - shared.begin()), cube);
+        }
       } else {
         EXPECT_EQ(v - input_points + 1, cube) << "a copy on the upper cube of its shared vertex";
       }
