@@ -679,6 +679,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
     previous_tiles = tiles;
     EXPECT_LE(soup_test::json_integer(tiled_run.first, "modelled_peak"),
               soup_test::json_integer(tiled_run.first, "max_memory")) << tiled_run.first;
+    EXPECT_EQ(tiled_run.first.find("warning"), std::string::npos) << "a closed mesh is within the model: " << tiled_run.first;
     EXPECT_TRUE(same(expected, canonical_of(folder + "/tiled.off"))) << limit;
   }
   EXPECT_TRUE(std::filesystem::is_empty(folder + "/spill"));
@@ -694,6 +695,33 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
 // The files of an assembly given together (`repair A.stl B.stl -o OUT --tiles N`) are streamed
 // as one soup: the pig cut into two binary STL files gives the file of the whole pig, byte for
 // byte. Without tiles, or with a file that is not a binary STL, the tool refuses.
+// The model of `--max-memory` takes one output point for two triangles, as on a closed mesh. A soup
+// of 300,000 loose triangles keeps three points a triangle: the tool repairs it in tiles within
+// the limit, then says on standard error that its output step needs more than the limit.
+TEST(TiledReconstruction, ToolWarnsWhenTheOutputNeedsMoreThanTheModel)
+{
+  Soup loose;
+  for(std::size_t k = 0; k < 300000; ++k) {
+    const double x = double(k % 600), y = double(k / 600);
+    const std::size_t first = loose.points.size();
+    loose.points.emplace_back(x, y, 0);
+    loose.points.emplace_back(x + 0.5, y, 0);
+    loose.points.emplace_back(x, y + 0.5, 0);
+    loose.triangles.push_back({first, first + 1, first + 2});
+  }
+  const std::string folder = soup_test::temporary_folder("tiled_loose");
+  ST::IO::write_triangle_soup(folder + "/loose.stl", loose.points, loose.triangles);
+  const auto run = soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + folder + "/loose.stl' -o '" +
+                                          folder + "/out.stl' --json --tolerance 1e-3 --max-memory 60M 2>&1");
+  ASSERT_EQ(run.second, 0) << run.first;
+  EXPECT_GT(soup_test::json_integer(run.first, "tiles"), 1) << run.first;
+  EXPECT_EQ(soup_test::json_integer(run.first, "output_vertices"), 900000) << run.first;
+  EXPECT_NE(run.first.find("warning: the repaired soup has 900000 points for 300000 triangles"), std::string::npos)
+    << run.first;
+  EXPECT_NE(run.first.find("above --max-memory 60M"), std::string::npos) << run.first;
+  std::filesystem::remove_all(folder);
+}
+
 TEST(TiledReconstruction, ToolRepairsTheFilesOfAnAssemblyTogether)
 {
   Soup pig;

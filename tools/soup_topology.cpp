@@ -721,13 +721,17 @@ private:
 // "Bounded memory"), in bytes, for a soup of `n` triangles of which `held` bytes are held whole
 // (a soup that is not a binary STL is read whole first). Measured on the jittered tori of 1M and
 // 4M triangles: a tile's region costs about 560 bytes a triangle while it is repaired, the kept
-// triangles 48 bytes a triangle of the soup, and the merge, the orientation and the statistics of
-// the output 88 (the soup and the tables of the output: 78 measured at 4M, 86 at 40M); the
-// largest region is at most 1.25 times a tile's share plus 25,000 triangles of halo.
+// triangles 48 bytes a triangle of the soup; the largest region is at most 1.25 times a tile's
+// share plus 25,000 triangles of halo. After the tiles: the merge, 24 bytes an output triangle
+// and 88 an output point (the parts, their points sorted, the output), then the orientation and
+// the statistics, 64 a triangle and 48 a point (the soup and the tables of the output). For one
+// point to two triangles, as on a closed mesh, that is 88 a triangle (78 measured at 4M, 86 at
+// 40M); a soup of loose triangles (3 points a triangle) needs 288 (300k: 93 MiB measured).
 struct Tiled_memory_model
 {
   static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 560, per_kept_triangle = 48,
-                          per_output_triangle = 88;
+                          merge_per_triangle = 24, merge_per_point = 88, per_output_triangle = 64,
+                          per_output_point = 48;
   double n, held;
   // the peak while the tiles are repaired
   double tiles_peak(std::size_t tiles) const
@@ -735,8 +739,14 @@ struct Tiled_memory_model
     const double region = tiles == 1 ? n : std::min(n, 1.25 * n / double(tiles) + 25000);
     return base + held + per_kept_triangle * n + per_region_triangle * region;
   }
-  // the peak of the merge, the orientation and the writing, whatever the number of tiles
-  double output_peak() const { return base + per_output_triangle * n; }
+  // the peak of the merge, the orientation and the writing of `triangles` on `points`
+  static double output_need(double triangles, double points)
+  {
+    return base + std::max(merge_per_triangle * triangles + merge_per_point * points,
+                           per_output_triangle * triangles + per_output_point * points);
+  }
+  // that peak before the repair, whatever the number of tiles: one point for two triangles
+  double output_peak() const { return output_need(n, n / 2); }
   double peak(std::size_t tiles) const { return std::max(tiles_peak(tiles), output_peak()); }
 };
 
@@ -873,6 +883,15 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
   }
   if(show) std::cerr << "\n";
   if(!root) return 0;
+  if(model) {
+    // The model took one point for two triangles; a soup left with more (loose triangles, open
+    // seams) needs more for its output than the limit allowed for.
+    const double need = Tiled_memory_model::output_need(double(triangles.size()), double(points.size()));
+    if(need > *o.max_memory)
+      std::cerr << "repair: warning: the repaired soup has " << points.size() << " points for " << triangles.size()
+                << " triangles (the model of --max-memory takes one for two); its merge and orientation need about "
+                << mebibytes(need) << ", above --max-memory " << mebibytes(*o.max_memory) << "\n";
+  }
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
   const Written_soup written(o, points, triangles, progress);
