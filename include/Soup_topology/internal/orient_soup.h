@@ -132,12 +132,8 @@ private:
   // Vertex i of triangle t in the output: the vertex of its fan (`separate_fans()`).
   std::size_t corner_vertex(size_type t, int i) const
   {
-    const std::size_t c = 3 * std::size_t(t) + std::size_t(i);
-    if(!moved_corners_.empty()) {
-      const auto it = std::lower_bound(moved_corners_.begin(), moved_corners_.end(), std::make_pair(c, std::size_t(0)));
-      if(it != moved_corners_.end() && it->first == c) return it->second;
-    }
-    return vertex(t, i);
+    if(corner_vertex_.empty()) return vertex(t, i);
+    return corner_vertex_[3 * std::size_t(t) + std::size_t(i)];
   }
 
   // --- Canonical order -------------------------------------------------------------------------
@@ -457,7 +453,8 @@ private:
   template <class ConcurrencyTag>
   void separate_fans()
   {
-    moved_corners_.clear();
+    corner_vertex_.clear();
+    std::vector<std::pair<std::size_t, std::size_t>> moved; // (3 t + i, the copy)
     const std::size_t vertices = tables_->number_of_vertices();
     std::vector<std::vector<size_type>> split_in_block(number_of_blocks(vertices, block_size));
     for_each_block<ConcurrencyTag>(vertices, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
@@ -491,10 +488,17 @@ private:
       }
       for(std::size_t j = 0; j < around.size(); ++j)
         if(new_index[fan[j]] != v)
-          moved_corners_.emplace_back(3 * std::size_t(around[j]) + std::size_t(tables_->local_index(around[j], v)),
-                                      new_index[fan[j]]);
+          moved.emplace_back(3 * std::size_t(around[j]) + std::size_t(tables_->local_index(around[j], v)), new_index[fan[j]]);
     }
-    std::sort(moved_corners_.begin(), moved_corners_.end()); // a corner is moved once at most
+    if(moved.empty()) return; // every corner keeps its vertex: no array (24 bytes a triangle)
+    // Corners are read many times over around non-manifold edges (`is_shared_in_output()`): an
+    // array of them all, read in constant time, once a vertex is separated.
+    const std::size_t n = tables_->number_of_triangles();
+    corner_vertex_.resize(3 * n);
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t t) {
+      for(int i = 0; i < 3; ++i) corner_vertex_[3 * t + std::size_t(i)] = tables_->vertex(size_type(t), i);
+    });
+    for(const auto& [c, copy] : moved) corner_vertex_[c] = copy;
   }
 
   // Whether edge i of t is shared by another triangle once the fans are separated. Only a
@@ -722,14 +726,8 @@ private:
     const std::size_t n = triangles_.size();
     std::vector<std::size_t> flips(number_of_blocks(n, block_size), 0);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      // the moved corners of the block, walked along with its triangles
-      auto moved = std::lower_bound(moved_corners_.begin(), moved_corners_.end(), std::make_pair(3 * begin, std::size_t(0)));
       for(std::size_t t = begin; t != end; ++t) {
-        std::size_t c[3];
-        for(int i = 0; i < 3; ++i) {
-          if(moved != moved_corners_.end() && moved->first == 3 * t + std::size_t(i)) c[i] = (moved++)->second;
-          else c[i] = vertex(size_type(t), i);
-        }
+        const std::size_t c[3] = {corner_vertex(size_type(t), 0), corner_vertex(size_type(t), 1), corner_vertex(size_type(t), 2)};
         const bool reverse = (reversed_[t] != 0) != (turn_[patch_[t]] != 0);
         if(reverse) ++flips[b];
         if(reverse) assign_triangle(triangles_[t], c[0], c[2], c[1]);
@@ -752,9 +750,9 @@ private:
   std::vector<size_type> patch_;
   std::vector<size_type> patch_order_;   // the triangles, patch after patch
   std::vector<std::size_t> patch_begin_; // patch p is patch_order_[patch_begin_[p], patch_begin_[p + 1])
-  // the corners whose fan got a copy of their vertex (`separate_fans()`): (3 t + i, the copy),
-  // sorted; every other corner keeps its vertex
-  std::vector<std::pair<std::size_t, std::size_t>> moved_corners_;
+  // the vertex of every corner in the output (`separate_fans()`); empty when no corner moves to a
+  // copy of its vertex (a soup without non-manifold vertices), every corner then keeping its own
+  std::vector<std::size_t> corner_vertex_;
   std::vector<std::array<double, 3>> xyz_;
 };
 
