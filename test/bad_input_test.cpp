@@ -16,6 +16,7 @@
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
 
+#include "../tools/memory_reuse.h"
 #include "bounded_run.h"
 #include "test_utilities.h"
 
@@ -1235,6 +1236,37 @@ TEST_F(HostileInput, ThreadCountsGiveTheSameOutputAndBadCountsAreRefused)
   expect_refused_unchanged({"gaps", input, "--threads"}, "gaps: --threads needs a value");
   expect_refused_unchanged({"repair", input, "-o", output, "--threads", "0"},
                            "--threads takes a number of threads from 1 to 4096");
+}
+
+// The tools keep freed memory for reuse (tools/memory_reuse.h) unless GLIBC_TUNABLES is set:
+// what they print and write must not depend on it.
+TEST_F(HostileInput, MemoryReuseChangesNoOutput)
+{
+  const std::string pig = soup_test::data_file("cgal_repair/pig.stl.xz");
+  const auto outputs = [&](const std::string& name) {
+    const std::string out = folder + "/" + name + ".off";
+    const soup_test::Bounded_run repair = run({"repair", pig, "-o", out, "--tolerance", "0.3", "--json", "--threads", "2"});
+    EXPECT_EQ(repair.exit_code, 0) << repair.err;
+    std::string report = repair.out;
+    report.erase(0, report.find("\"format\""));  // the file names differ
+    const soup_test::Bounded_run gaps = run({"gaps", pig, "--json", "--threads", "2"});
+    EXPECT_EQ(gaps.exit_code, 0) << gaps.err;
+    const soup_test::Bounded_run stats = run({"stats", pig, "--json", "--threads", "2"});
+    EXPECT_EQ(stats.exit_code, 0) << stats.err;
+    return report + gaps.out + stats.out + read_whole(out);
+  };
+  ASSERT_EQ(std::getenv("GLIBC_TUNABLES"), nullptr);
+  const std::string reused = outputs("reused");
+  ASSERT_EQ(setenv("GLIBC_TUNABLES", "glibc.malloc.perturb=0", 1), 0);
+  const std::string by_default = outputs("default");
+  // The policy stands aside for the environment's, and is taken otherwise (glibc, no sanitizer).
+  EXPECT_FALSE(soup_topology_tool::keep_freed_memory_for_reuse());
+  ASSERT_EQ(unsetenv("GLIBC_TUNABLES"), 0);
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+  EXPECT_TRUE(soup_topology_tool::keep_freed_memory_for_reuse());
+#endif
+  EXPECT_NE(reused.find("\"verdict\""), std::string::npos);
+  EXPECT_EQ(reused, by_default);
 }
 
 } // namespace bad_input_test

@@ -26,6 +26,7 @@
 
 #include "gaps_command.h"
 #include "html_command.h"
+#include "memory_reuse.h"
 #include "output_files.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -933,6 +934,8 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
 [[maybe_unused]] int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
+  // Under --max-memory the memory model's limit comes first: freed memory goes back to the system.
+  if(!o.max_memory) tool::keep_freed_memory_for_reuse();
   if(!o.spill_folder.empty() && o.tiles == 0 && !o.max_memory)
     throw Usage_error("repair: --spill-folder goes with --tiles N or --max-memory SIZE");
   for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
@@ -1043,6 +1046,7 @@ int main(int argc, char** argv)
   const std::string command = args[0];
   args.erase(args.begin());
   try {
+    if(command == "stats" || command == "gaps") tool::keep_freed_memory_for_reuse();
     if(command == "stats") return run_stats(args);
     if(command == "repair") return run_repair(args);
     if(command == "gaps") return run_gaps(args);
@@ -1079,6 +1083,7 @@ int main(int argc, char** argv)
   Repair_options o;
   try {
     o = mpi_repair_options(args, team);
+    if(!o.max_memory) tool::keep_freed_memory_for_reuse();
   } catch(const std::exception& e) {
     // Every rank checks the same arguments: every rank stops here.
     if(root) std::cerr << "soup_topology_mpi: " << e.what() << "\n" << mpi_usage_text;
