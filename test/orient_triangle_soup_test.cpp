@@ -519,6 +519,89 @@ TEST(OrientTriangleSoup, NonManifoldPiecesAreSeparatedIntoValidMeshes)
   EXPECT_EQ(num_faces(strip), 24u);
 }
 
+// k tetrahedra (A, B, C_i, D_i) around one edge AB, in thin wedges that do not overlap, half of
+// the triangles reversed, all shuffled: 2k triangles on one non-manifold edge. `closed`: the four
+// faces of each; else without the face B D_i C_i (open wedges).
+struct Wedges_around_one_edge
+{
+  std::vector<Point> points = {Point(0, 0, 0), Point(0, 0, 1)};
+  std::vector<Triangle> triangles;
+
+  Wedges_around_one_edge(std::size_t k, bool closed)
+  {
+    const double two_pi = 2 * 3.14159265358979323846;
+    for(std::size_t i = 0; i < k; ++i) {
+      const double a = two_pi * double(i) / double(k), b = two_pi * (double(i) + 0.5) / double(k);
+      const std::size_t c = points.size(), d = c + 1;
+      points.emplace_back(std::cos(a), std::sin(a), 0.25);
+      points.emplace_back(std::cos(b), std::sin(b), 0.75);
+      std::vector<Triangle> faces = {Triangle{0, 1, c}, Triangle{1, 0, d}, Triangle{0, c, d}};
+      if(closed) faces.push_back(Triangle{1, d, c});
+      for(const Triangle& t : faces) triangles.push_back(triangles.size() % 2 == 0 ? t : Triangle{t[0], t[2], t[1]});
+    }
+    std::mt19937_64 rng(k);
+    std::shuffle(triangles.begin(), triangles.end(), rng);
+  }
+};
+
+// The directed edges of `triangles`, each expected once, and how many have no reverse (border edges).
+std::size_t border_edges_of_consistent_soup(const std::vector<Triangle>& triangles)
+{
+  std::set<std::pair<std::size_t, std::size_t>> directed;
+  for(const Triangle& t : triangles)
+    for(std::size_t i = 0; i < 3; ++i) EXPECT_TRUE(directed.insert({t[i], t[(i + 1) % 3]}).second);
+  std::size_t border = 0;
+  for(const auto& [u, v] : directed) border += directed.count({v, u}) == 0 ? 1 : 0;
+  return border;
+}
+
+// Whether an edge is shared once the fans are separated was decided, on a non-manifold edge, by
+// reading for each of its triangles every other one: k^2 (30 s for the open wedges below, k =
+// 25,000). It is now one sort of the edge's triangles. Closed tetrahedra: each gets its own copies
+// of A and B, is closed and is oriented outward by its volume. (Their nesting test still compares
+// every pair of closed parts whose boxes overlap, as all of these do: k = 2,000 here.)
+TEST(OrientTriangleSoup, WedgesAroundOneEdgeAreSeparatedClosedWhereTheyCloseAndLinear)
+{
+  {
+    const std::size_t k = 2000;
+    Wedges_around_one_edge s(k, true);
+    const ST::Orientation_report r = ST::orient_triangle_soup(s.points, s.triangles);
+    EXPECT_EQ(r.duplicate_triangles, 0u);
+    EXPECT_EQ(r.duplicated_points, 2 * (k - 1));
+    ASSERT_EQ(s.points.size(), 4 * k);
+    ASSERT_EQ(s.triangles.size(), 4 * k);
+    EXPECT_EQ(border_edges_of_consistent_soup(s.triangles), 0u);
+    // Outward: every tetrahedron (known by its points C_i, D_i) has a positive volume.
+    std::vector<double> volume(k, 0.0);
+    for(const Triangle& t : s.triangles) {
+      std::size_t apex = 0;
+      for(std::size_t v : t)
+        if(v >= 2 && v < 2 + 2 * k) apex = v;
+      ASSERT_GE(apex, 2u);
+      const Point& p = s.points[t[0]];
+      const Point& q = s.points[t[1]];
+      const Point& u = s.points[t[2]];
+      volume[(apex - 2) / 2] += CGAL::determinant(p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), u.x(), u.y(), u.z());
+    }
+    for(std::size_t i = 0; i < k; ++i) ASSERT_GT(volume[i], 0.0) << "tetrahedron " << i;
+  }
+  const std::size_t k = 25000;
+  Wedges_around_one_edge s(k, false);
+  const std::clock_t start = std::clock();
+  const ST::Orientation_report r = ST::orient_triangle_soup(s.points, s.triangles);
+  const double seconds = cpu_seconds_since(start);
+  // At A a fan per wedge (its faces meet along A C_i and A D_i); at B two, its faces on A B meeting
+  // along nothing but the non-manifold edge: k - 1 copies of A, 2k - 1 of B.
+  EXPECT_EQ(r.duplicated_points, 3 * k - 2);
+  ASSERT_EQ(s.points.size(), 5 * k);
+  ASSERT_EQ(s.triangles.size(), 3 * k);
+  // So each wedge's two faces on A B end on different copies of B: with B C_i, B D_i and C_i D_i,
+  // five border edges a wedge.
+  EXPECT_EQ(border_edges_of_consistent_soup(s.triangles), 5 * k);
+  EXPECT_LT(seconds, 2.0);
+  RecordProperty("cpu_seconds", std::to_string(seconds));
+}
+
 // ---------------------------------------------------------------------------------------------
 // The orientation with the tables at hand (a pipeline's), and its results pinned: the values
 // below are those of the orientation before it read repeated triangles and fans from the tables
