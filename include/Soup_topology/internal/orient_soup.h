@@ -9,13 +9,12 @@
 #define SOUP_TOPOLOGY_INTERNAL_ORIENT_SOUP_H
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/boxes_inside_boxes.h>
 #include <Soup_topology/internal/Point_hash_map.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/separate_non_manifold.h>
 #include <Soup_topology/internal/soup_checks.h>
 
-#include <CGAL/Bbox_3.h>
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
@@ -675,22 +674,13 @@ private:
         }
       }
     });
-    // Only pairs of overlapping boxes can be nested: found by CGAL's box intersection, not by
-    // testing every pair (a soup can hold many thousands of closed pieces).
-    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
-    std::vector<Box> boxes;
-    boxes.reserve(m);
-    for(std::size_t c = 0; c < m; ++c)
-      boxes.emplace_back(CGAL::Bbox_3(box[c][0], box[c][1], box[c][2], box[c][3], box[c][4], box[c][5]), c);
+    // Only a closed patch whose box holds the other's box can enclose it: those pairs alone are
+    // listed (`for_each_box_inside_another()`), not every pair (a soup can hold many thousands of
+    // closed pieces) nor every pair of overlapping boxes (k closed pieces around one edge all
+    // overlap: k^2 pairs, none of them nested).
     std::vector<std::size_t> depth(m, 0);
-    auto encloses = [&](std::size_t outer, std::size_t inner) {
-      for(std::size_t i = 0; i < 3; ++i)
-        if(box[inner][i] < box[outer][i] || box[outer][i + 3] < box[inner][i + 3]) return false;
-      return std::abs(winding_number(closed_patches[outer], sample[inner])) > 0.5;
-    };
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-      if(encloses(x.info(), y.info())) ++depth[y.info()];
-      if(encloses(y.info(), x.info())) ++depth[x.info()];
+    for_each_box_inside_another(box, [&](std::size_t outer, std::size_t inner) {
+      if(std::abs(winding_number(closed_patches[outer], sample[inner])) > 0.5) ++depth[inner];
     });
     return depth;
   }
