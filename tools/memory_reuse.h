@@ -31,11 +31,28 @@
 
 namespace soup_topology_tool {
 
+// The sanitizers' allocators ignore the policy (clang defines no __SANITIZE_ADDRESS__).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define SOUP_TOPOLOGY_TOOL_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define SOUP_TOPOLOGY_TOOL_SANITIZED_ALLOCATOR 1
+#endif
+/// whether the policy can be set here: glibc, and no sanitizer.
+#if defined(__GLIBC__) && !defined(SOUP_TOPOLOGY_TOOL_SANITIZED_ALLOCATOR)
+inline constexpr bool memory_reuse_can_be_set = true;
+#else
+inline constexpr bool memory_reuse_can_be_set = false;
+#endif
+
 /// asks glibc to serve large blocks from the heap and to keep freed memory for reuse (nothing
-/// elsewhere, or when the environment sets `GLIBC_TUNABLES`); returns whether the policy was set.
+/// where `memory_reuse_can_be_set` is false, or when the environment sets `GLIBC_TUNABLES`);
+/// returns whether the policy was set.
 inline bool keep_freed_memory_for_reuse()
 {
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#if defined(__GLIBC__) && !defined(SOUP_TOPOLOGY_TOOL_SANITIZED_ALLOCATOR)
   if(std::getenv("GLIBC_TUNABLES") != nullptr) return false;
   // mallopt returns 1 on success: both must take.
   return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
