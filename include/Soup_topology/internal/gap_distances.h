@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/parallel.h>
 
 #include <CGAL/number_utils.h>
+#include <CGAL/property_map.h>
 #include <CGAL/tags.h>
 
 #include <algorithm>
@@ -100,7 +101,11 @@ class Nearest_border_search
 {
   using Point = typename Geom_traits::Point_3;
   using FT = typename Geom_traits::FT;
-  using Tree = Octree<Geom_traits>;
+  // the border vertices' points read from the soup's points through their indices: the tree
+  // keeps the only copy (in its own order), no copy in the order of `border` is made
+  using Border_point_map = typename CGAL::Pointer_property_map<Point>::const_type;
+  using Tree = Octree<Geom_traits, Border_point_map>;
+  using Subset_tree = Octree<Geom_traits>;
 
 public:
   /// (the octree built on TBB's threads with a parallel `ConcurrencyTag`: the same tree)
@@ -111,9 +116,9 @@ public:
     : points_(points), tables_(tables), border_(border), gt_(gt),
       squared_distance_(gt.compute_squared_distance_3_object()), nearest_(border.size())
   {
-    border_points_.reserve(border.size());
-    for(std::size_t v : border) border_points_.push_back(points[v]);
-    tree_.emplace(border_points_, parameters::bucket_capacity(border_bucket_capacity, CGAL::parameters::geom_traits(gt)),
+    tree_.emplace(border,
+                  parameters::bucket_capacity(border_bucket_capacity,
+                                              CGAL::parameters::geom_traits(gt).point_map(CGAL::make_property_map(points.data()))),
                   tag);
   }
 
@@ -148,13 +153,13 @@ public:
     if(!count_while_searching) {
       // Counted by blocks (in parallel with `Parallel_tag`), then checked: the budget is
       // exceeded for the same total as when counted one by one.
-      const std::size_t n = border_points_.size(), m = border_edge_ends_.size();
+      const std::size_t n = border_.size(), m = border_edge_ends_.size();
       std::vector<std::size_t> counts(number_of_blocks(n + m), 0);
       for_each_block<ConcurrencyTag>(n + m, default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
         for(std::size_t i = begin; i < end; ++i)
-          counts[g] += i < n ? tree_->number_of_vertices_near_point(border_points_[i], r)
-                             : tree_->number_of_vertices_near_segment(border_points_[border_edge_ends_[i - n][0]],
-                                                                      border_points_[border_edge_ends_[i - n][1]], r);
+          counts[g] += i < n ? tree_->number_of_vertices_near_point(border_point(i), r)
+                             : tree_->number_of_vertices_near_segment(border_point(border_edge_ends_[i - n][0]),
+                                                                      border_point(border_edge_ends_[i - n][1]), r);
       });
       std::size_t total = 0;
       for(std::size_t c : counts) total += c;
@@ -205,11 +210,11 @@ public:
   {
     const FT r(radius);
     if(border_edges_.empty()) list_border_edges();
-    for(std::size_t k : subset) count_examined(tree_->number_of_vertices_near_point(border_points_[k], r));
+    for(std::size_t k : subset) count_examined(tree_->number_of_vertices_near_point(border_point(k), r));
     std::vector<Point> subset_points;
     subset_points.reserve(subset.size());
-    for(std::size_t k : subset) subset_points.push_back(border_points_[k]);
-    const Tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
+    for(std::size_t k : subset) subset_points.push_back(border_point(k));
+    const Subset_tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
     for(const Adjacency_tables::Edge& edge : border_edges_) {
       const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
       count_examined(subset_tree.number_of_vertices_near_segment(
@@ -219,13 +224,16 @@ public:
     for(std::size_t k : subset) {
       nearest_[k] = Nearest_border_element();
       near.clear();
-      tree_->vertices_near_point(border_points_[k], r, std::back_inserter(near));
+      tree_->vertices_near_point(border_point(k), r, std::back_inserter(near));
       for(std::size_t j : near) offer_vertex(k, j);
     }
     search_edges(subset_tree, subset, r);
   }
 
 private:
+  // the point of border vertex k (index into `border`), as the tree holds it
+  const Point& border_point(std::size_t k) const { return tree_->point(k); }
+
   void count_examined(std::size_t n)
   {
     examined_ += n;
@@ -238,7 +246,7 @@ private:
     const std::size_t v = border_[k];
     const std::size_t w = border_[j];
     if(w == v || share_a_triangle(tables_, v, w)) return;
-    const double d = std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], border_points_[j])));
+    const double d = std::sqrt(CGAL::to_double(squared_distance_(border_point(k), border_point(j))));
     Nearest_border_element& best = nearest_[k];
     if(d < best.distance || (d == best.distance && w < best.vertex)) {
       best.distance = d;
@@ -290,7 +298,7 @@ private:
       const std::size_t k = to_border(m);
       const std::size_t v = border_[k];
       if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
-      offer(k, std::sqrt(CGAL::to_double(squared_distance_(border_points_[k], s))));
+      offer(k, std::sqrt(CGAL::to_double(squared_distance_(border_point(k), s))));
     }
   }
 
@@ -307,7 +315,7 @@ private:
 
   // The segment query of every border edge over `tree`, which holds the points of the vertices
   // `ks` (indices into `border`), in that order (the candidates counted already).
-  void search_edges(const Tree& tree, const std::vector<std::size_t>& ks, const FT& r)
+  void search_edges(const Subset_tree& tree, const std::vector<std::size_t>& ks, const FT& r)
   {
     std::vector<std::size_t> near;
     for(const Adjacency_tables::Edge& edge : border_edges_) {
@@ -324,7 +332,6 @@ private:
   const std::vector<std::size_t>& border_;
   const Geom_traits& gt_;
   typename Geom_traits::Compute_squared_distance_3 squared_distance_;
-  std::vector<Point> border_points_;
   std::optional<Tree> tree_;
   std::vector<Nearest_border_element> nearest_;
   std::vector<Adjacency_tables::Edge> border_edges_;              // in the order of their triangles
