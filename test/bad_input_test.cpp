@@ -31,6 +31,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -1265,6 +1266,24 @@ TEST_F(HostileInput, MemoryReuseChangesNoOutput)
   EXPECT_EQ(soup_topology_tool::keep_freed_memory_for_reuse(), soup_topology_tool::memory_reuse_can_be_set);
   EXPECT_NE(reused.find("\"verdict\""), std::string::npos);
   EXPECT_EQ(reused, by_default);
+  // With the policy taken, the heap is advised for huge pages wherever the kernel has them: one
+  // mapping (the part of the heap grown for it) of nearly `huge_page_heap_size()` bytes flagged
+  // "hg" in /proc/self/smaps.
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  const std::size_t marked = soup_topology_tool::huge_page_heap_size();
+  if(soup_topology_tool::memory_reuse_can_be_set && thp && marked > 0) {
+    std::ifstream smaps("/proc/self/smaps");
+    ASSERT_TRUE(smaps) << "no /proc/self/smaps";
+    std::size_t mapping = 0, largest_advised = 0;
+    for(std::string line; std::getline(smaps, line);) {
+      unsigned long long begin = 0, end = 0;
+      if(std::sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find(' '))
+        mapping = static_cast<std::size_t>(end - begin);
+      else if(line.rfind("VmFlags:", 0) == 0 && (line + " ").find(" hg ") != std::string::npos)
+        largest_advised = std::max(largest_advised, mapping);
+    }
+    EXPECT_GE(largest_advised, marked - (std::size_t(4) << 20));
+  }
 }
 
 } // namespace bad_input_test
