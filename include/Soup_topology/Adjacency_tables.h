@@ -9,6 +9,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 #include <Soup_topology/internal/union_find.h>
 
 #include <CGAL/tags.h>
@@ -606,7 +607,7 @@ private:
     const std::size_t nv = number_of_points;
     vertex_begin_.assign(nv, 0);
     vertex_size_.assign(nv, 0);
-    std::vector<size_type>().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
+    decltype(vertex_capacity_)().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
     for(const Triangle& tr : triangles_)
       for(size_type v : tr) ++vertex_size_[v];
     std::size_t offset = 0;
@@ -630,24 +631,37 @@ private:
   void build_in_parallel(std::size_t number_of_points)
   {
     const std::size_t nv = number_of_points, m = triangles_.size();
-    vertex_begin_.assign(nv, 0);
-    vertex_size_.assign(nv, 0);
-    std::vector<size_type>().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
+    // written whole by the prefix pass below
+    vertex_begin_.resize(nv);
+    vertex_size_.resize(nv);
+    decltype(vertex_capacity_)().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
     {
       const std::unique_ptr<std::atomic<size_type>[]> cursor(new std::atomic<size_type>[nv]);
       internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
       internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
         for(size_type v : triangles_[t]) cursor[v].fetch_add(1, std::memory_order_relaxed);
       });
-      std::size_t offset = 0;
-      for(std::size_t v = 0; v < nv; ++v) {
-        const size_type d = cursor[v].load(std::memory_order_relaxed);
-        vertex_begin_[v] = offset;
-        vertex_size_[v] = d;
-        cursor[v].store(0, std::memory_order_relaxed);
-        offset += d;
-      }
-      ids_.resize(offset);
+      // The exclusive prefix sums of the degrees by blocks: the blocks' totals, their prefix sums
+      // (one per block, in order), then the offsets of each block from its own start.
+      const std::size_t block = internal::default_block_size;
+      std::vector<std::size_t> block_offset(internal::number_of_blocks(nv, block) + 1, 0);
+      internal::for_each_block<ConcurrencyTag>(nv, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
+        std::size_t total = 0;
+        for(std::size_t v = begin; v != end; ++v) total += cursor[v].load(std::memory_order_relaxed);
+        block_offset[g + 1] = total;
+      });
+      for(std::size_t g = 1; g < block_offset.size(); ++g) block_offset[g] += block_offset[g - 1];
+      internal::for_each_block<ConcurrencyTag>(nv, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
+        std::size_t offset = block_offset[g];
+        for(std::size_t v = begin; v != end; ++v) {
+          const size_type d = cursor[v].load(std::memory_order_relaxed);
+          vertex_begin_[v] = offset;
+          vertex_size_[v] = d;
+          cursor[v].store(0, std::memory_order_relaxed);
+          offset += d;
+        }
+      });
+      ids_.resize(block_offset.back()); // every entry written by the pass below
       internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
         for(size_type v : triangles_[t])
           ids_[vertex_begin_[v] + cursor[v].fetch_add(1, std::memory_order_relaxed)] = static_cast<size_type>(t);
@@ -657,7 +671,8 @@ private:
       size_type* b = ids_.data() + vertex_begin_[v];
       std::sort(b, b + vertex_size_[v]);
     });
-    neighbors_.assign(3 * m, border_edge);
+    neighbors_.resize(3 * m);
+    internal::for_each_index<ConcurrencyTag>(3 * m, [&](std::size_t k) { neighbors_[k] = border_edge; });
     struct End { size_type other; Edge edge; };
     internal::for_each_block<ConcurrencyTag>(nv, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       std::vector<End> ends;
@@ -792,12 +807,14 @@ private:
   std::vector<Triangle> triangles_;
   // Vertex table: compressed rows with spare capacity; a row that outgrows its capacity moves to
   // the end of `ids_` (amortised constant time per insertion).
-  std::vector<std::size_t> vertex_begin_;
-  std::vector<size_type> vertex_size_;
-  std::vector<size_type> vertex_capacity_; // empty while every list is full (after a build)
-  std::vector<size_type> ids_;
+  // (`Uninitialized_vector`: a build writes every entry of these tables, on TBB's threads in the
+  // parallel build, and nothing zeroes them before.)
+  internal::Uninitialized_vector<std::size_t> vertex_begin_;
+  internal::Uninitialized_vector<size_type> vertex_size_;
+  internal::Uninitialized_vector<size_type> vertex_capacity_; // empty while every list is full (after a build)
+  internal::Uninitialized_vector<size_type> ids_;
   // Edge table: neighbors_[3 t + i] is the neighbour of t across its edge i.
-  std::vector<size_type> neighbors_;
+  internal::Uninitialized_vector<size_type> neighbors_;
   // Scratch space of the local updates.
   std::vector<size_type> merge_buffer_;
   std::vector<Edge> group_;
