@@ -10,6 +10,7 @@
 #include <Soup_topology/internal/Octree_morton.h>
 #include <Soup_topology/internal/octree_distance_filters.h>
 #include <Soup_topology/internal/parallel.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 #include <Soup_topology/parameters.h>
 
 #include <CGAL/Iterator_range.h>
@@ -1227,6 +1228,9 @@ private:
     std::uint64_t code;
     std::uint32_t id;
   };
+  // (`Uninitialized_vector`: the keys, the indices and the positions of a build are written whole,
+  // on TBB's threads in a parallel build, and nothing zeroes them before.)
+  using Keys = internal::Uninitialized_vector<Key>;
 
   // the bounding box of the approximate coordinates and the largest error of the approximation
   struct Approximate_box
@@ -1259,7 +1263,7 @@ private:
     const Approximate_box box = internal::runs_in_parallel<Tag>() ? box_in_parallel<Tag>(range, pm, n)
                                                                   : approximate_points(range, pm, n, approx);
     set_workspace(box);
-    std::vector<Key> keys = sorted_keys<Tag>(range, pm, n, approx);
+    Keys keys = sorted_keys<Tag>(range, pm, n, approx);
     gather_points<Tag>(range, pm, keys, approx);
     build_nodes(keys);
   }
@@ -1382,11 +1386,11 @@ private:
 
   // step 3: Morton codes, sorted with the point index as tie-breaker (a deterministic layout)
   template <typename Tag, typename PointRange>
-  std::vector<Key> sorted_keys(const PointRange& range, const PointMap& pm, std::size_t n,
-                               const std::vector<std::array<double, 3>>& approx) const
+  Keys sorted_keys(const PointRange& range, const PointMap& pm, std::size_t n,
+                   const std::vector<std::array<double, 3>>& approx) const
   {
     const auto first = std::begin(range);
-    std::vector<Key> keys(n);
+    Keys keys(n);
     internal::for_each_index<Tag>(n, [&](std::size_t i) {
       if constexpr(double_coordinates)
       {
@@ -1407,23 +1411,24 @@ private:
   // code (`internal::sort_by_key()`, over all the bits of the codes) orders them by (code, id)
   // as `sort_keys()` does
   template <typename Tag>
-  void sort_keys_in_parallel(std::vector<Key>& keys) const
+  void sort_keys_in_parallel(Keys& keys) const
   {
     struct Item
     {
       std::uint64_t key;
       std::uint32_t id;
     };
-    std::vector<Item> items(keys.size()), buffer;
+    // written whole by the passes on TBB's threads before they are read
+    internal::Uninitialized_vector<Item> items(keys.size()), buffer;
     internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { items[i] = Item{keys[i].code, keys[i].id}; });
     internal::sort_by_key<Tag>(items, buffer, 3 * depth_);
-    std::vector<Item>().swap(buffer);
+    internal::Uninitialized_vector<Item>().swap(buffer);
     internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { keys[i] = Key{items[i].key, items[i].id}; });
   }
 
   // step 4: the points in the order of the keys, with their indices both ways
   template <typename Tag, typename PointRange>
-  void gather_points(const PointRange& range, const PointMap& pm, const std::vector<Key>& keys,
+  void gather_points(const PointRange& range, const PointMap& pm, const Keys& keys,
                      const std::vector<std::array<double, 3>>& approx)
   {
     const auto first = std::begin(range);
@@ -1474,7 +1479,7 @@ private:
   // children are laid out depth first: the blocks of a path from the root to a leaf come in
   // increasing order, and those of a small subtree are close together, so that a descent reads
   // memory forward.
-  void build_nodes(const std::vector<Key>& keys)
+  void build_nodes(const Keys& keys)
   {
     const std::size_t n = keys.size();
     nodes_.clear();
@@ -1513,12 +1518,12 @@ private:
   // sorts by (code, id): a stable LSD radix sort on the 33 most significant bits of the codes
   // (10 to 11 levels, enough to separate almost every point), then std::sort on the few runs
   // that share those bits
-  void sort_keys(std::vector<Key>& keys) const
+  void sort_keys(Keys& keys) const
   {
     const unsigned bits = 3 * depth_;
     const unsigned radix_bits = std::min(bits, 33u);
     const unsigned low = bits - radix_bits;
-    std::vector<Key> tmp(keys.size());
+    Keys tmp(keys.size());
     for(unsigned s = low; s < bits; s += 11)
     {
       std::array<std::uint32_t, 2049> count{};
@@ -1758,8 +1763,8 @@ private:
 
   std::vector<Point_3> points_;                  // sorted by (Morton code, index)
   std::vector<std::array<double, 3>> approx_;    // their coordinates in double (if FT is not)
-  std::vector<std::uint32_t> ids_;               // their indices in the input range
-  std::vector<std::uint32_t> positions_;         // input index -> sorted position
+  internal::Uninitialized_vector<std::uint32_t> ids_;       // their indices in the input range
+  internal::Uninitialized_vector<std::uint32_t> positions_; // input index -> sorted position
   std::vector<Node> nodes_;
 };
 

@@ -223,9 +223,10 @@ std::size_t first_index_where(std::size_t n, const Predicate& bad)
 /// sorts `items` by their member `key` (an unsigned 64-bit integer), stably, with a least
 /// significant digit radix sort of 16-bit digits over the `bits` low bits of the keys (the
 /// others are zero); a digit that all keys share is skipped. `buffer` is scratch space.
-template <class Item>
-void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+template <class Items>
+void radix_sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
 {
+  using Item = typename Items::value_type;
   const std::size_t n = items.size();
   if(n < 2) return;
   if(n < 4096) {
@@ -250,8 +251,10 @@ void radix_sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsi
 /// many: each pass counts the digits of 16 blocks of items in parallel, places the items of a
 /// block after those of the blocks before it with the same digit, and scatters the blocks in
 /// parallel. A stable sort by key has one result: it is that of `radix_sort_by_key()`.
-template <class ConcurrencyTag, class Item>
-void sort_by_key(std::vector<Item>& items, std::vector<Item>& buffer, unsigned bits = 64)
+/// `Items` is a `std::vector` of the items; with an `Uninitialized_vector`, the scratch space is
+/// first written by the parallel passes, not zeroed by one thread before.
+template <class ConcurrencyTag, class Items>
+void sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
 {
   const std::size_t n = items.size();
   if constexpr(runs_in_parallel<ConcurrencyTag>()) {

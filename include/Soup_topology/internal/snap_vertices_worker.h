@@ -15,6 +15,7 @@
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance_graph.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
@@ -576,12 +577,19 @@ private:
         return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t(1) << 63);
       };
       struct Item { std::uint64_t key; std::uint32_t id; };
-      std::vector<Item> items(n), buffer;
-      for(std::size_t c = 0; c < n; ++c) items[c] = {ordered_bits(candidate_point(c).x()), static_cast<std::uint32_t>(c)};
-      if(parallel_)
+      // written whole before they are read, on TBB's threads in a parallel weld
+      Uninitialized_vector<Item> items(n), buffer;
+      const auto make_item = [&](std::size_t c) {
+        items[c] = {ordered_bits(candidate_point(c).x()), static_cast<std::uint32_t>(c)};
+      };
+      if(parallel_) {
+        for_each_index<CGAL::Parallel_if_available_tag>(n, make_item);
         sort_by_key<CGAL::Parallel_if_available_tag>(items, buffer);
-      else
+      } else {
+        for(std::size_t c = 0; c < n; ++c) make_item(c);
         radix_sort_by_key(items, buffer);
+      }
+      Uninitialized_vector<Item>().swap(buffer);
       for(std::size_t i = 0; i < n;) {
         std::size_t j = i + 1;
         while(j < n && items[j].key == items[i].key) ++j;
@@ -596,7 +604,11 @@ private:
                     });
         i = j;
       }
-      for(std::size_t i = 0; i < n; ++i) lex_order_[i] = items[i].id;
+      const auto take_id = [&](std::size_t i) { lex_order_[i] = items[i].id; };
+      if(parallel_)
+        for_each_index<CGAL::Parallel_if_available_tag>(n, take_id);
+      else
+        for(std::size_t i = 0; i < n; ++i) take_id(i);
     } else {
       const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
       std::iota(lex_order_.begin(), lex_order_.end(), 0u);

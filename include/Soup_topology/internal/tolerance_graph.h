@@ -9,6 +9,7 @@
 
 #include <Soup_topology/Octree.h>
 #include <Soup_topology/internal/parallel.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 #include <Soup_topology/internal/union_find.h>
 
 #include <CGAL/number_utils.h>
@@ -106,7 +107,7 @@ std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& e
   if(frame.largest_key[0] < packed_limit && frame.largest_key[1] < packed_limit && frame.largest_key[2] < packed_limit) {
     // Three indices of 21 bits in one integer, sorted by radix.
     struct Item { std::uint64_t key; };
-    std::vector<Item> keys(n), buffer;
+    Uninitialized_vector<Item> keys(n), buffer; // written whole on TBB's threads before they are read
     for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
       const std::array<std::int64_t, 3> k = frame.key(approximate_coordinates(points[i]));
       keys[i].key = (std::uint64_t(k[0]) << 42) | (std::uint64_t(k[1]) << 21) | std::uint64_t(k[2]);
