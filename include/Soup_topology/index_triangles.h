@@ -11,6 +11,7 @@
 #include <Soup_topology/internal/Point_hash_map.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/tags.h>
 
@@ -63,7 +64,7 @@ using Point_concurrency =
 /// smallest index, as in the sequential pass. Other number types are welded sequentially: the
 /// comparisons of lazily exact numbers update state shared between the points.
 template <class ConcurrencyTag, class PointAccess>
-std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const PointAccess& point)
+Uninitialized_vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const PointAccess& point)
 {
   using Point = std::decay_t<decltype(point(std::size_t(0)))>;
   using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
@@ -72,7 +73,9 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
   } else {
     // The partitions cost a pass of their own: on one thread, the sequential weld.
     if(!runs_on_several_threads<ConcurrencyTag>()) return first_equal_points(n, point);
-    std::vector<std::uint32_t> first_of(n);
+    // (`Uninitialized_vector`: the arrays of this pass are written whole on TBB's threads, and
+    // nothing zeroes them before)
+    Uninitialized_vector<std::uint32_t> first_of(n);
     if(n == 0) return first_of;
     {
       auto hash_of = [&](std::size_t i) {
@@ -82,7 +85,7 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
       };
       constexpr std::size_t partitions = 256;
       const std::size_t block_size = default_block_size, blocks = number_of_blocks(n, block_size);
-      std::vector<std::uint8_t> partition_of(n);
+      Uninitialized_vector<std::uint8_t> partition_of(n);
       // count[p * blocks + b]: the points of block b in partition p; partition-major prefix sums
       // place the points of a partition in increasing index order.
       std::vector<std::uint32_t> count(partitions * blocks, 0);
@@ -106,16 +109,16 @@ std::vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const P
         }
         partition_begin[partitions] = total;
       }
-      std::vector<std::uint32_t> order(n);
+      Uninitialized_vector<std::uint32_t> order(n);
       for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
         for(std::size_t i = begin; i != end; ++i)
           order[count[partition_of[i] * blocks + b]++] = static_cast<std::uint32_t>(i);
       });
-      std::vector<std::uint8_t>().swap(partition_of);
+      Uninitialized_vector<std::uint8_t>().swap(partition_of);
       for_each_block<ConcurrencyTag>(partitions, 1, [&](std::size_t q, std::size_t, std::size_t) {
         const std::uint32_t* ids = order.data() + partition_begin[q];
         const std::size_t m = partition_begin[q + 1] - partition_begin[q];
-        const std::vector<std::uint32_t> local =
+        const Uninitialized_vector<std::uint32_t> local =
           // what `point` returns: a reference, or a point decoded on the fly (binary STL)
           first_equal_points(m, [&](std::size_t k) -> decltype(auto) { return point(ids[k]); });
         for(std::size_t k = 0; k < m; ++k) first_of[ids[k]] = ids[local[k]];
@@ -133,8 +136,9 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
                                FaceRange& faces, Index_report& report)
 {
   using Face = typename FaceRange::value_type;
-  const std::vector<std::uint32_t> first_of = first_equal_points_in_parallel<ConcurrencyTag>(corners, corner_point);
-  std::vector<std::uint32_t> point_of(corners);
+  const Uninitialized_vector<std::uint32_t> first_of =
+    first_equal_points_in_parallel<ConcurrencyTag>(corners, corner_point);
+  Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners below, then the others
   points.clear();
   const std::size_t distinct = compact_in_order<ConcurrencyTag>(
     corners, [&](std::size_t i) { return first_of[i] == i; },
@@ -152,7 +156,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
     const std::uint32_t a = point_of[3 * k], b = point_of[3 * k + 1], c = point_of[3 * k + 2];
     return a != b && b != c && c != a;
   };
-  std::vector<std::uint32_t> kept_triangle(m);
+  Uninitialized_vector<std::uint32_t> kept_triangle(m); // the first `kept_count` written below
   faces.clear();
   const std::size_t kept_count = compact_in_order<ConcurrencyTag>(
     m, kept, [&](std::size_t k, std::size_t position) { kept_triangle[position] = static_cast<std::uint32_t>(k); });
@@ -176,7 +180,7 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
   using Face = typename FaceRange::value_type;
   // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
   // of the point of corner i (a first corner is read before any later one is renumbered).
-  std::vector<std::uint32_t> point_of = first_equal_points(corners, corner_point);
+  Uninitialized_vector<std::uint32_t> point_of = first_equal_points(corners, corner_point);
   // The points are counted first so that `points` holds exactly them, without the spare room
   // of a vector grown one point at a time.
   std::size_t distinct = 0;
@@ -299,7 +303,7 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   // A NaN equals nothing, not even itself: it would silently make a point of its own.
   const std::size_t bad = first_index_where<Tag>(n, [&](std::size_t i) { return !is_finite_point(points[i]); });
   if(bad != n) throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
-  const std::vector<std::uint32_t> first_of =
+  const Uninitialized_vector<std::uint32_t> first_of =
     first_equal_points_in_parallel<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; });
   std::vector<std::size_t> new_index(n);
   if constexpr(runs_in_parallel<Tag>()) {

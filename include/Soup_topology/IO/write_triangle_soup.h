@@ -89,7 +89,7 @@ template <class PointRange, class Float_point>
 bool has_distinct_points_equal_in_float(const PointRange& points, const std::vector<Float_point>& rounded,
                                         const std::vector<std::size_t>& order)
 {
-  const std::vector<std::uint32_t> first_of = Soup_topology::internal::first_equal_points(
+  const auto first_of = Soup_topology::internal::first_equal_points(
     order.size(), [&](std::size_t k) -> const Float_point& { return rounded[order[k]]; });
   for(std::size_t k = 0; k < order.size(); ++k)
     if(first_of[k] != k && write_coordinates(points[order[first_of[k]]]) != write_coordinates(points[order[k]]))

@@ -11,6 +11,8 @@
 #ifndef SOUP_TOPOLOGY_INTERNAL_POINT_HASH_MAP_H
 #define SOUP_TOPOLOGY_INTERNAL_POINT_HASH_MAP_H
 
+#include <Soup_topology/internal/uninitialized_vector.h>
+
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/number_utils.h>
 
@@ -58,12 +60,12 @@ inline std::uint64_t mix_bits(std::uint64_t h)
 /// `first_of[i]` = the smallest index j with `point(j) == point(i)`, where `point(k)` returns
 /// the k-th point (a kernel `Point_3`). `n` points.
 template <class PointAccess>
-std::vector<std::uint32_t> first_equal_points(std::size_t n, const PointAccess& point)
+Uninitialized_vector<std::uint32_t> first_equal_points(std::size_t n, const PointAccess& point)
 {
   using Point = std::decay_t<decltype(point(std::size_t(0)))>;
   using Kernel = typename CGAL::Kernel_traits<Point>::Kernel;
   using FT = typename Kernel::FT;
-  std::vector<std::uint32_t> first_of(n);
+  Uninitialized_vector<std::uint32_t> first_of(n); // every entry written below
   if(n == 0) return first_of;
 
   if constexpr(std::is_same<FT, double>::value) {
