@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/Origin.h>
@@ -80,10 +81,12 @@ struct Loop_level
   using Index = std::uint32_t;
   static constexpr Index none = static_cast<Index>(-1);
 
-  std::vector<std::array<Index, 3>> triangles;
-  std::vector<Index> edge_of;        // 3 per triangle
-  std::vector<Index> half1, half2;   // per edge
-  std::vector<std::uint8_t> count;   // per edge, saturated at 3
+  // (`Uninitialized_vector`: `refine()` writes every entry of the next level's arrays on TBB's
+  // threads, and nothing zeroes them before.)
+  Uninitialized_vector<std::array<Index, 3>> triangles;
+  Uninitialized_vector<Index> edge_of;        // 3 per triangle
+  Uninitialized_vector<Index> half1, half2;   // per edge
+  Uninitialized_vector<std::uint8_t> count;   // per edge, saturated at 3
   std::vector<Loop_vertex_kind> kind;
   std::size_t number_of_edges = 0;
 
@@ -210,8 +213,8 @@ struct Loop_level
   void refine(std::size_t n)
   {
     const std::size_t m = triangles.size(), E = number_of_edges, E2 = 2 * E + 3 * m;
-    std::vector<std::array<Index, 3>> children(4 * m);
-    std::vector<Index> child_edges(12 * m);
+    Uninitialized_vector<std::array<Index, 3>> children(4 * m); // 4 per triangle, written below
+    Uninitialized_vector<Index> child_edges(12 * m);            // 12 per triangle, written below
     for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
       const std::array<Index, 3> v = triangles[t];
       const Index e[3] = {static_cast<Index>(n + edge_of[3 * t]), static_cast<Index>(n + edge_of[3 * t + 1]),
@@ -238,8 +241,9 @@ struct Loop_level
       const bool at_a = (a < b) == (s == 0);
       return at_a ? 3 * (4 * t + i) : 3 * (4 * t + (i + 1) % 3) + 2;
     };
-    std::vector<Index> h1(E2), h2(E2);
-    std::vector<std::uint8_t> c(E2);
+    // the 2E halves of the old edges and the 3m inner edges, each written once below
+    Uninitialized_vector<Index> h1(E2), h2(E2);
+    Uninitialized_vector<std::uint8_t> c(E2);
     for_each_index<ConcurrencyTag>(E, [&](std::size_t i) {
       const Index e = static_cast<Index>(i);
       for(int s = 0; s < 2; ++s) {
@@ -352,7 +356,7 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
   out.resize(n + E);
   // the edges of every vertex, in increasing order
   std::vector<std::size_t> first_edge(n + 1, 0);
-  std::vector<Index> edges_of(2 * E);
+  Uninitialized_vector<Index> edges_of(2 * E); // both ends of every edge, written below
   {
     const std::unique_ptr<std::atomic<Index>[]> cursor(new std::atomic<Index>[n]);
     for_each_index<ConcurrencyTag>(n, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
