@@ -41,6 +41,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <sstream>
@@ -551,7 +552,75 @@ TEST(ParallelSortByKey, StableAndTheSequentialOrder)
     std::size_t different = 0;
     for(std::size_t i = 0; i < sorted.size(); ++i) different += sorted[i].id != expected[i].id;
     EXPECT_EQ(different, 0u);
+    // the same with scratch space that is not zeroed first
+    ST::internal::Uninitialized_vector<Item> unzeroed(items.begin(), items.end()), unzeroed_buffer;
+    ST::internal::sort_by_key<Parallel>(unzeroed, unzeroed_buffer);
+    different = 0;
+    for(std::size_t i = 0; i < unzeroed.size(); ++i) different += unzeroed[i].id != expected[i].id;
+    EXPECT_EQ(different, 0u);
     EXPECT_EQ(ST::internal::largest_tolerance_cell<Parallel>(cloud, 0.01), expected_cell);
+  });
+}
+
+// Blocks of many sizes filled with a pattern and freed: the allocator hands the same memory out
+// again to the next blocks of these sizes, so that an entry of an `Uninitialized_vector` that a
+// pass forgot to write shows as the pattern, not as a lucky zero of fresh memory.
+void leave_a_pattern_in_freed_memory()
+{
+  std::vector<void*> blocks;
+  for(std::size_t bytes = 1024; bytes <= (std::size_t(1) << 17); bytes *= 2)
+    for(int k = 0; k < 3; ++k) {
+      void* block = std::malloc(bytes + 16 * std::size_t(k));
+      if(block == nullptr) continue;
+      std::memset(block, 0xA5, bytes + 16 * std::size_t(k));
+#if defined(__GNUC__)
+      asm volatile("" : : "r"(block) : "memory"); // the filled block is used: keep the writes
+#endif
+      blocks.push_back(block);
+    }
+  for(void* block : blocks) std::free(block);
+}
+
+TEST(ParallelUninitializedTables, NoEntryIsLeftUnwritten)
+{
+  // The arrays that the passes write whole are not zeroed first (`internal::Uninitialized_vector`):
+  // built over memory that holds a pattern, the weld, the tables and Loop's levels are those of
+  // the sequential code, on any number of threads.
+  ST::internal::Uninitialized_vector<std::uint32_t> filled(3, 7u);
+  filled.resize(5, 9u);
+  EXPECT_EQ(std::vector<std::uint32_t>(filled.begin(), filled.end()), (std::vector<std::uint32_t>{7, 7, 7, 9, 9}));
+  filled.assign(2, 4u);
+  EXPECT_EQ(std::vector<std::uint32_t>(filled.begin(), filled.end()), (std::vector<std::uint32_t>{4, 4}));
+
+  const Mesh_data m = load("clean/elephant.off");
+  const auto soup = soup_test::explode(m.points, m.triangles);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  const ST::Index_report expected = ST::index_triangles(soup, points, triangles);
+  leave_a_pattern_in_freed_memory();
+  const ST::Adjacency_tables expected_tables(triangles, points.size());
+  std::vector<Point> loop_points = m.points;
+  std::vector<Triangle> loop_triangles = m.triangles;
+  leave_a_pattern_in_freed_memory();
+  ST::loop_subdivision(loop_points, loop_triangles, CGAL::parameters::number_of_iterations(2));
+  for_each_thread_count([&](int) {
+    for(int round = 0; round < 2; ++round) {
+      std::vector<Point> p;
+      std::vector<Triangle> t;
+      leave_a_pattern_in_freed_memory();
+      const ST::Index_report r = ST::index_triangles<Parallel>(soup, p, t);
+      EXPECT_EQ(fields(r), fields(expected));
+      EXPECT_EQ(bits(p), bits(points));
+      EXPECT_EQ(t, triangles);
+      leave_a_pattern_in_freed_memory();
+      expect_same_tables(ST::Adjacency_tables(t, p.size(), Parallel()), expected_tables);
+      std::vector<Point> lp = m.points;
+      std::vector<Triangle> lt = m.triangles;
+      leave_a_pattern_in_freed_memory();
+      ST::loop_subdivision<Parallel>(lp, lt, CGAL::parameters::number_of_iterations(2));
+      EXPECT_EQ(bits(lp), bits(loop_points));
+      EXPECT_EQ(lt, loop_triangles);
+    }
   });
 }
 
