@@ -20,6 +20,7 @@
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/soup_statistics.h>
 #include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/internal/snap_vertices_worker.h>
 #include <Soup_topology/internal/tolerance_graph.h>
 
@@ -883,6 +884,53 @@ TEST(ParallelRobustnessSoup, ExactKernelAndCollapsedTriangles)
     EXPECT_EQ(fields(r), fields(expected));
     EXPECT_EQ(bits(p), bits(ep));
     EXPECT_EQ(t, et);
+  });
+}
+
+// A grid of 240 x 240 unit squares whose every third square (19,200) has its diagonal split at
+// its midpoint (exact in double) by a zero-area triangle, flippable with the triangle across the
+// diagonal; in every seventh row these are doubled back to back (2,800 more, on a non-manifold
+// diagonal, which no flip removes and the triangle across the diagonal covers): 22,000
+// degenerate triangles over the 10 blocks of the soup. The scans and the tables of the flips, and the removal of
+// the covered ones, on any number of threads: the same lists, flips, removals and triangles.
+TEST(ParallelRobustnessSoup, DegenerateTrianglesFlippedAndRemovedOverManyBlocks)
+{
+  const std::size_t n = 240;
+  std::vector<Point> points;
+  for(std::size_t y = 0; y <= n; ++y)
+    for(std::size_t x = 0; x <= n; ++x) points.emplace_back(double(x), double(y), 0.0);
+  auto at = [&](std::size_t x, std::size_t y) { return y * (n + 1) + x; };
+  std::vector<Triangle> triangles;
+  for(std::size_t y = 0; y < n; ++y)
+    for(std::size_t x = 0; x < n; ++x) {
+      const std::size_t p00 = at(x, y), p10 = at(x + 1, y), p11 = at(x + 1, y + 1), p01 = at(x, y + 1);
+      triangles.push_back({p00, p11, p01});
+      if((x + y) % 3 != 0) {
+        triangles.push_back({p00, p10, p11});
+        continue;
+      }
+      const std::size_t m = points.size();
+      points.emplace_back(double(x) + 0.5, double(y) + 0.5, 0.0);
+      triangles.push_back({p00, p10, m});
+      triangles.push_back({p10, p11, m});
+      triangles.push_back({p11, p00, m});
+      if(y % 7 == 0) triangles.push_back({p00, p11, m});
+    }
+  const std::vector<ST::Adjacency_tables::size_type> degenerate =
+    ST::internal::degenerate_triangles(points, triangles, Epick());
+  ASSERT_EQ(degenerate.size(), 22000u);
+  auto expected = triangles;
+  const auto flips = ST::internal::flip_degenerate_triangles(points, expected, Epick());
+  const std::size_t removed = ST::internal::remove_covered_degenerate_triangles(points, expected, Epick());
+  ASSERT_GT(flips.flipped, 15000u);
+  ASSERT_GT(removed, 2000u);
+  for_each_thread_count([&](int) {
+    EXPECT_EQ(ST::internal::degenerate_triangles<Parallel>(points, triangles, Epick()), degenerate);
+    auto t = triangles;
+    const auto f = ST::internal::flip_degenerate_triangles<Parallel>(points, t, Epick());
+    EXPECT_EQ(std::make_pair(f.flipped, f.remaining), std::make_pair(flips.flipped, flips.remaining));
+    EXPECT_EQ(ST::internal::remove_covered_degenerate_triangles<Parallel>(points, t, Epick()), removed);
+    EXPECT_EQ(t, expected);
   });
 }
 

@@ -17,6 +17,7 @@
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/soup_self_intersections.h>
@@ -323,8 +324,8 @@ public:
   /// `Small_features::COLLAPSE`, before the tables are built.
   void flip_degenerate_triangles_away()
   {
-    report_.flipped_degenerate_triangles = flip_degenerate_triangles(pts_, triangles_, gt_).flipped;
-    report_.removed_degenerate_triangles = remove_covered_degenerate_triangles(pts_, triangles_, gt_);
+    report_.flipped_degenerate_triangles = flip_degenerate_triangles<ConcurrencyTag>(pts_, triangles_, gt_).flipped;
+    report_.removed_degenerate_triangles = remove_covered_degenerate_triangles<ConcurrencyTag>(pts_, triangles_, gt_);
   }
 
   /// builds the adjacency tables and records what they show before the repair.
@@ -430,9 +431,17 @@ public:
     report_.non_manifold_edges_after = tables_->non_manifold_edges().size();
     report_.non_manifold_vertices_after = tables_->template non_manifold_vertices<ConcurrencyTag>().size();
     report_.components = tables_->template number_of_connected_components<ConcurrencyTag>();
+    // On TBB's threads with double coordinates, whose predicates share no lazily computed state.
+    using Collinear_tag =
+      std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
     const typename Geom_traits::Collinear_3 collinear = gt_.collinear_3_object();
-    for(const Adjacency_tables::Triangle& t : tables_->triangles())
-      if(collinear(pts_[t[0]], pts_[t[1]], pts_[t[2]])) ++report_.degenerate_triangles_after;
+    const std::vector<Adjacency_tables::Triangle>& final_triangles = tables_->triangles();
+    std::vector<Adjacency_tables::size_type> collinear_triangles;
+    append_indices_where<Collinear_tag>(final_triangles.size(), [&](std::size_t k) {
+      const Adjacency_tables::Triangle& t = final_triangles[k];
+      return collinear(pts_[t[0]], pts_[t[1]], pts_[t[2]]);
+    }, collinear_triangles);
+    report_.degenerate_triangles_after = collinear_triangles.size();
     tables_.reset();
     const std::size_t before = pts_.size();
     const std::vector<std::uint32_t> kept_index = remove_unreferenced_points(pts_, triangles_);

@@ -199,6 +199,25 @@ void concatenate_in_block_order(std::vector<std::vector<T>>& buffers, std::vecto
   }
 }
 
+/// appends to `out` the elements `i` of `[0, n)` for which `keep(i)` holds, in increasing order
+/// (blocks scanned in parallel when `ConcurrencyTag` asks for it, their finds put together in
+/// block order). `keep` is called once per element: for a costly test that few pass.
+template <class ConcurrencyTag, class Index, class Keep>
+void append_indices_where(std::size_t n, const Keep& keep, std::vector<Index>& out)
+{
+  if constexpr(!runs_in_parallel<ConcurrencyTag>()) {
+    for(std::size_t i = 0; i < n; ++i)
+      if(keep(i)) out.push_back(static_cast<Index>(i));
+  } else {
+    std::vector<std::vector<Index>> found(number_of_blocks(n));
+    for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i)
+        if(keep(i)) found[b].push_back(static_cast<Index>(i));
+    });
+    concatenate_in_block_order(found, out);
+  }
+}
+
 /// the first `i` in `[0, n)` for which `bad(i)` holds, or `n` (blocks checked in parallel when
 /// `ConcurrencyTag` asks for it; the smallest index wins whatever the threads).
 template <class ConcurrencyTag, class Predicate>

@@ -10,11 +10,15 @@
 #define SOUP_TOPOLOGY_INTERNAL_SMALL_FEATURE_DEGENERATE_H
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
+
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,6 +31,24 @@ struct Degenerate_flip_counts
   std::size_t flipped = 0;    ///< degenerate triangles removed by a flip
   std::size_t remaining = 0;  ///< degenerate triangles left (no neighbour to flip with)
 };
+
+/// the triangles of `triangles` whose three distinct corners are collinear (exactly, by
+/// `Collinear_3`), in increasing order. With `CGAL::Parallel_tag` and double coordinates (whose
+/// predicates share no lazily computed state) the triangles are tested by blocks on TBB's
+/// threads; the list is the same.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Kernel, class Point, class TriangleRange>
+std::vector<Adjacency_tables::size_type> degenerate_triangles(const std::vector<Point>& points,
+                                                              const TriangleRange& triangles, const Kernel& kernel)
+{
+  using Tag = std::conditional_t<std::is_same<typename Kernel::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
+  const typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
+  std::vector<Adjacency_tables::size_type> degenerate;
+  append_indices_where<Tag>(static_cast<std::size_t>(triangles.size()), [&](std::size_t t) {
+    const std::array<std::size_t, 3> c = triangle_indices(*(triangles.begin() + static_cast<std::ptrdiff_t>(t)));
+    return c[0] != c[1] && c[1] != c[2] && c[2] != c[0] && collinear(points[c[0]], points[c[1]], points[c[2]]);
+  }, degenerate);
+  return degenerate;
+}
 
 /// removes, by edge flips, the triangles of `triangles` whose three distinct corners are
 /// collinear (exactly, by `Collinear_3`). For such a triangle (a, b, c) with c between a and b
@@ -49,7 +71,10 @@ struct Degenerate_flip_counts
 /// the next, which one pass shortens by one. A chain longer than the passes allow is left
 /// (counted in `remaining`) to `remove_covered_degenerate_triangles()`, rather than paid for with a
 /// quadratic number of passes.
-template <class Kernel, class Point, class TriangleRange>
+///
+/// With `CGAL::Parallel_tag`, the scans (`degenerate_triangles()`) and the tables of each pass
+/// run on TBB's threads; the flips, in their geometric order, do not.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Kernel, class Point, class TriangleRange>
 Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& points, TriangleRange& triangles,
                                                  const Kernel& kernel)
 {
@@ -57,9 +82,6 @@ Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& point
   const typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
   const typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
   auto corners = [&](std::size_t t) { return triangle_indices(*(triangles.begin() + static_cast<std::ptrdiff_t>(t))); };
-  auto is_degenerate = [&](const std::array<std::size_t, 3>& c) {
-    return c[0] != c[1] && c[1] != c[2] && c[2] != c[0] && collinear(points[c[0]], points[c[1]], points[c[2]]);
-  };
   // The corners of a triangle sorted lexicographically, for the geometric order.
   auto sorted_corners = [&](std::size_t t) {
     std::array<std::size_t, 3> c = corners(t);
@@ -79,12 +101,10 @@ Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& point
   const std::size_t n = static_cast<std::size_t>(triangles.size());
   std::vector<size_type> degenerate;
   for(std::size_t pass = 0;; ++pass) {
-    degenerate.clear();
-    for(std::size_t t = 0; t < n; ++t)
-      if(is_degenerate(corners(t))) degenerate.push_back(static_cast<size_type>(t));
+    degenerate = degenerate_triangles<ConcurrencyTag>(points, triangles, kernel);
     if(degenerate.empty() || pass == 16) break;
     std::stable_sort(degenerate.begin(), degenerate.end(), geometric_less);
-    const Adjacency_tables tables(triangles, points.size());
+    const Adjacency_tables tables(triangles, points.size(), ConcurrencyTag());
     std::vector<char> used(n, 0);
     bool changed = false;
     for(const size_type t : degenerate) {
@@ -125,24 +145,21 @@ Degenerate_flip_counts flip_degenerate_triangles(const std::vector<Point>& point
 /// `flip_degenerate_triangles()` cannot, e.g. two degenerate triangles glued back to back or
 /// along their long edge. The decision of each triangle depends on the non-degenerate triangles
 /// only, so it does not depend on the order of the triangles; the others keep their order.
-template <class Kernel, class Point, class TriangleRange>
+/// With `CGAL::Parallel_tag`, the scan (`degenerate_triangles()`) and the tables run on TBB's
+/// threads.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Kernel, class Point, class TriangleRange>
 std::size_t remove_covered_degenerate_triangles(const std::vector<Point>& points, TriangleRange& triangles,
                                                 const Kernel& kernel)
 {
   using size_type = Adjacency_tables::size_type;
-  const typename Kernel::Collinear_3 collinear = kernel.collinear_3_object();
   const typename Kernel::Less_xyz_3 less_xyz = kernel.less_xyz_3_object();
   const std::size_t n = static_cast<std::size_t>(triangles.size());
   auto corners = [&](std::size_t t) { return triangle_indices(*(triangles.begin() + static_cast<std::ptrdiff_t>(t))); };
+  const std::vector<size_type> degenerate = degenerate_triangles<ConcurrencyTag>(points, triangles, kernel);
+  if(degenerate.empty()) return 0;
   std::vector<char> is_degenerate(n, 0);
-  bool any = false;
-  for(std::size_t t = 0; t < n; ++t) {
-    const std::array<std::size_t, 3> c = corners(t);
-    if(c[0] != c[1] && c[1] != c[2] && c[2] != c[0] && collinear(points[c[0]], points[c[1]], points[c[2]]))
-      is_degenerate[t] = any = 1;
-  }
-  if(!any) return 0;
-  const Adjacency_tables tables(triangles, points.size());
+  for(const size_type t : degenerate) is_degenerate[t] = 1;
+  const Adjacency_tables tables(triangles, points.size(), ConcurrencyTag());
   // `true` if [u,w] is an edge of a triangle that is not degenerate.
   auto has_covering_edge = [&](std::size_t u, std::size_t w) {
     for(size_type t : tables.triangles_around_vertex(static_cast<size_type>(u)))
@@ -151,8 +168,7 @@ std::size_t remove_covered_degenerate_triangles(const std::vector<Point>& points
   };
   std::vector<char> is_removed(n, 0);
   std::size_t removed = 0;
-  for(std::size_t t = 0; t < n; ++t) {
-    if(!is_degenerate[t]) continue;
+  for(const size_type t : degenerate) {
     std::array<std::size_t, 3> c = corners(t);
     std::sort(c.begin(), c.end(), [&](std::size_t x, std::size_t y) { return less_xyz(points[x], points[y]); });
     const std::size_t a = c[0], middle = c[1], b = c[2];
