@@ -324,54 +324,42 @@ public:
     const std::size_t n = triangles_.size();
     // Whether an edge is non-manifold (its triangles are then joined in one more pass).
     std::atomic<bool> non_manifold(false);
-    std::vector<size_type> root;
     if(internal::runs_on_several_threads<ConcurrencyTag>()) {
-      internal::Concurrent_union_find sets(n);
-      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
-                                               [&](std::size_t, std::size_t begin, std::size_t end) {
-        for(std::size_t i = begin; i < end; ++i)
-          join_across_manifold_edges(static_cast<size_type>(i), sets, non_manifold);
-      });
-      if(non_manifold) join_around_non_manifold_edges(sets);
-      root.resize(n);
-      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
-                                               [&](std::size_t, std::size_t begin, std::size_t end) {
-        for(std::size_t t = begin; t < end; ++t) root[t] = sets.find(static_cast<size_type>(t));
-      });
-    }
-    else {
-      internal::Union_find sets(n);
-      for(size_type t = 0; t < n; ++t) join_across_manifold_edges(t, sets, non_manifold);
-      if(non_manifold) join_around_non_manifold_edges(sets);
-      root = sets.take_roots();
-    }
-    // Ids in the order of the smallest triangle of each component (the root of its set): the
-    // roots of a block are numbered after those of the blocks before it.
-    const std::size_t blocks = internal::number_of_blocks(n);
-    std::vector<size_type> roots_before(blocks + 1, 0);
-    internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
-                                             [&](std::size_t g, std::size_t begin, std::size_t end) {
-      for(std::size_t t = begin; t < end; ++t) roots_before[g + 1] += root[t] == t ? 1 : 0;
-    });
-    for(std::size_t g = 0; g < blocks; ++g) roots_before[g + 1] += roots_before[g];
-    const std::size_t count = roots_before[blocks];
-    if(component != nullptr) {
-      std::vector<size_type> cc(n);
-      // first the ids of the roots, then every triangle takes its root's (a root precedes its set)
+      // Each block makes its triangles singletons and unites them across the edges inside it,
+      // alone with its ids (in a mesh stored in any spatial order most edges are inside a block),
+      // and lists its edges to later blocks; one thread then unites across those.
+      internal::Concurrent_union_find sets(n, internal::Concurrent_union_find::Unset{});
+      std::vector<std::vector<std::pair<size_type, size_type>>> between(internal::number_of_blocks(n));
       internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
                                                [&](std::size_t g, std::size_t begin, std::size_t end) {
-        size_type next = roots_before[g];
+        sets.make_singletons(begin, end);
         for(std::size_t t = begin; t < end; ++t)
-          if(root[t] == t) cc[t] = next++;
+          for(int i = 0; i < 3; ++i) {
+            const size_type u = neighbor(static_cast<size_type>(t), i);
+            if(u == non_manifold_edge) non_manifold.store(true, std::memory_order_relaxed);
+            else if(u <= t || u == border_edge) continue;
+            else if(u < end) sets.unite_alone(static_cast<size_type>(t), u);
+            else between[g].emplace_back(static_cast<size_type>(t), u);
+          }
       });
+      for(const auto& edges : between)
+        for(const auto& [t, u] : edges) sets.unite_alone(t, u);
+      if(non_manifold) join_around_non_manifold_edges(sets);
+      internal::Uninitialized_vector<size_type> root(n);
       internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
                                                [&](std::size_t, std::size_t begin, std::size_t end) {
-        for(std::size_t t = begin; t < end; ++t)
-          if(root[t] != t) cc[t] = cc[root[t]];
+        // in increasing order: a parent in the block holds its root already
+        for(std::size_t t = begin; t < end; ++t) {
+          const size_type p = sets.parent(static_cast<size_type>(t));
+          root[t] = p == t ? p : p >= begin ? root[p] : sets.find(p);
+        }
       });
-      component->swap(cc);
+      return number_components<ConcurrencyTag>(root, component);
     }
-    return count;
+    internal::Union_find sets(n);
+    for(size_type t = 0; t < n; ++t) join_across_manifold_edges(t, sets, non_manifold);
+    if(non_manifold) join_around_non_manifold_edges(sets);
+    return number_components<ConcurrencyTag>(sets.take_roots(), component);
   }
   /// @}
 
@@ -487,6 +475,40 @@ private:
       if(u == non_manifold_edge) non_manifold.store(true, std::memory_order_relaxed);
       else if(u != border_edge && u > t) sets.unite(t, u);
     }
+  }
+
+  // The number of components whose sets have the roots `root` (the smallest triangle of each
+  // set), and, if `component` is not null, the component of every triangle. Ids in the order of
+  // the roots: the roots of a block are numbered after those of the blocks before it.
+  template <class ConcurrencyTag, class Roots>
+  std::size_t number_components(const Roots& root, std::vector<size_type>* component) const
+  {
+    const std::size_t n = triangles_.size();
+    const std::size_t blocks = internal::number_of_blocks(n);
+    std::vector<size_type> roots_before(blocks + 1, 0);
+    internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                             [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t < end; ++t) roots_before[g + 1] += root[t] == t ? 1 : 0;
+    });
+    for(std::size_t g = 0; g < blocks; ++g) roots_before[g + 1] += roots_before[g];
+    const std::size_t count = roots_before[blocks];
+    if(component != nullptr) {
+      std::vector<size_type> cc(n);
+      // first the ids of the roots, then every triangle takes its root's (a root precedes its set)
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t g, std::size_t begin, std::size_t end) {
+        size_type next = roots_before[g];
+        for(std::size_t t = begin; t < end; ++t)
+          if(root[t] == t) cc[t] = next++;
+      });
+      internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
+                                               [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t t = begin; t < end; ++t)
+          if(root[t] != t) cc[t] = cc[root[t]];
+      });
+      component->swap(cc);
+    }
+    return count;
   }
 
   // unites the triangles of every non-manifold edge

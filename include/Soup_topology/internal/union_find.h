@@ -66,9 +66,20 @@ private:
 class Concurrent_union_find
 {
 public:
-  explicit Concurrent_union_find(std::size_t n) : parent_(new std::atomic<std::uint32_t>[n]), size_(n)
+  /// `n` singletons.
+  explicit Concurrent_union_find(std::size_t n) : Concurrent_union_find(n, Unset{})
   {
-    for(std::size_t i = 0; i < n; ++i) parent_[i].store(static_cast<std::uint32_t>(i), std::memory_order_relaxed);
+    make_singletons(0, n);
+  }
+  /// Tag of the constructor that leaves the sets unset: the caller makes every id a singleton
+  /// (`make_singletons()`) before any other call, e.g. by blocks on the threads that use them,
+  /// which then take the first touch of that memory.
+  struct Unset {};
+  Concurrent_union_find(std::size_t n, Unset) : parent_(new std::atomic<std::uint32_t>[n]), size_(n) {}
+  /// makes every id of `[begin, end)` a singleton.
+  void make_singletons(std::size_t begin, std::size_t end)
+  {
+    for(std::size_t i = begin; i < end; ++i) parent_[i].store(static_cast<std::uint32_t>(i), std::memory_order_relaxed);
   }
   std::uint32_t find(std::uint32_t x)
   {
@@ -80,6 +91,7 @@ public:
       x = g;
     }
   }
+  /// unites the sets of `x` and `y`; any number of threads may unite at once.
   void unite(std::uint32_t x, std::uint32_t y)
   {
     for(;;) {
@@ -90,6 +102,16 @@ public:
       if(parent_[a].compare_exchange_strong(expected, b, std::memory_order_acq_rel, std::memory_order_acquire)) return;
     }
   }
+  /// `unite(x, y)` for a thread that alone touches the sets of `x` and `y` meanwhile (the sets
+  /// of a block of ids united within the block, each block by one thread): plain loads and
+  /// stores, no compare-and-swap. The parents keep the same rule.
+  void unite_alone(std::uint32_t x, std::uint32_t y)
+  {
+    const std::uint32_t a = find_alone(x), b = find_alone(y);
+    if(a != b) parent_[std::max(a, b)].store(std::min(a, b), std::memory_order_relaxed);
+  }
+  /// the parent of `x` (at most `x`; `x` itself for a root), once every union has returned.
+  std::uint32_t parent(std::uint32_t x) const { return parent_[x].load(std::memory_order_relaxed); }
   /// the sets, once every union has returned, into `uf` (each element linked to its root).
   void into(Union_find& uf)
   {
@@ -99,6 +121,18 @@ public:
   }
 
 private:
+  // `find()` for `unite_alone()`: the path is halved by plain stores.
+  std::uint32_t find_alone(std::uint32_t x)
+  {
+    for(;;) {
+      const std::uint32_t p = parent_[x].load(std::memory_order_relaxed);
+      if(p == x) return x;
+      const std::uint32_t g = parent_[p].load(std::memory_order_relaxed);
+      parent_[x].store(g, std::memory_order_relaxed);
+      x = g;
+    }
+  }
+
   std::unique_ptr<std::atomic<std::uint32_t>[]> parent_;
   std::size_t size_;
 };
