@@ -189,7 +189,7 @@ public:
   template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleRange>
   Snap_report run(TriangleRange& triangles)
   {
-    count_short_edges();
+    count_short_edges<ConcurrencyTag>();
     parallel_ = runs_in_parallel<ConcurrencyTag>();
     collect_candidates<ConcurrencyTag>();
     if(candidates_.size() < 2) {
@@ -249,18 +249,30 @@ private:
                      CGAL::to_double((*tolerances_)[tr[2]])});
   }
 
-  // Short edges: where the minimum feature separation is not met.
+  // Short edges: where the minimum feature separation is not met. Counted by blocks of
+  // triangles, on TBB's threads with the tag and double coordinates (whose predicates share no
+  // lazily computed state).
+  template <class ConcurrencyTag>
   void count_short_edges()
   {
+    using Tag = std::conditional_t<std::is_same<FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
     const FT eps2 = eps_ * eps_;
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
-      for(int i = 0; i < 3; ++i) {
-        const size_type u = tables_.neighbor(t, i);
-        if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
-        const size_type pv = tables_.vertex(t, i), qv = tables_.vertex(t, (i + 1) % 3);
-        if(tolerances_ != nullptr ? within_pair_tolerance(pv, qv) : within_squared(point(pv), point(qv), eps2))
-          ++report_.short_edges;
+    const std::size_t n = tables_.number_of_triangles();
+    std::vector<std::size_t> counts(number_of_blocks(n), 0);
+    for_each_block<Tag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t count = 0;
+      for(std::size_t k = begin; k < end; ++k) {
+        const size_type t = static_cast<size_type>(k);
+        for(int i = 0; i < 3; ++i) {
+          const size_type u = tables_.neighbor(t, i);
+          if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge && u < t) continue; // once per edge
+          const size_type pv = tables_.vertex(t, i), qv = tables_.vertex(t, (i + 1) % 3);
+          if(tolerances_ != nullptr ? within_pair_tolerance(pv, qv) : within_squared(point(pv), point(qv), eps2)) ++count;
+        }
       }
+      counts[b] = count;
+    });
+    for(const std::size_t c : counts) report_.short_edges += c;
   }
 
   // Candidates: the end points of border edges, in increasing index order (a vertex is a
@@ -329,23 +341,44 @@ private:
       join_neighborhoods();
   }
 
+  // `for_each_block()` of default-size blocks: on TBB's threads when the weld runs in parallel
+  // with double coordinates (whose predicates share no lazily computed state), else on this one.
+  template <class F>
+  void for_each_block_of_the_weld(std::size_t n, const F& f) const
+  {
+    if(parallel_ && std::is_same<FT, double>::value)
+      for_each_block<CGAL::Parallel_if_available_tag>(n, default_block_size, f);
+    else
+      for_each_block<CGAL::Sequential_tag>(n, default_block_size, f);
+  }
+
   // Pairs of vertices of one triangle within the tolerance: never merged, found from the
   // triangles, listed in the order of the octree's self-join (Morton order of the first vertex),
   // once each.
   void find_same_triangle_pairs()
   {
-    std::vector<std::uint32_t>& local = candidate_of_;
-    local.assign(points_.size(), not_candidate);
+    // By blocks of vertices, then of triangles: the pairs are sorted below, so the order in
+    // which the blocks list them does not matter.
+    Uninitialized_vector<std::uint32_t>& local = candidate_of_;
+    local.resize(points_.size());
+    for_each_block_of_the_weld(points_.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::fill(local.begin() + static_cast<std::ptrdiff_t>(begin), local.begin() + static_cast<std::ptrdiff_t>(end), not_candidate);
+    });
     for(std::size_t c = 0; c < candidates_.size(); ++c) local[candidates_[c]] = static_cast<std::uint32_t>(c);
     const FT eps2 = eps_ * eps_;
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
-      for(int i = 0; i < 3; ++i) {
-        const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
-        if(a == not_candidate || b == not_candidate) continue;
-        if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
-                                  : within_squared(candidate_point(a), candidate_point(b), eps2))
-          same_triangle_pairs_.emplace_back(std::min(a, b), std::max(a, b));
-      }
+    std::vector<std::vector<Pair>> found(number_of_blocks(tables_.number_of_triangles()));
+    for_each_block_of_the_weld(tables_.number_of_triangles(), [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t k = begin; k < end; ++k)
+        for(int i = 0; i < 3; ++i) {
+          const size_type t = static_cast<size_type>(k);
+          const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
+          if(a == not_candidate || b == not_candidate) continue;
+          if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
+                                    : within_squared(candidate_point(a), candidate_point(b), eps2))
+            found[g].emplace_back(std::min(a, b), std::max(a, b));
+        }
+    });
+    concatenate_in_block_order(found, same_triangle_pairs_);
     const Octree<Kernel>& tree = *tree_;
     std::sort(same_triangle_pairs_.begin(), same_triangle_pairs_.end(), [&](const Pair& x, const Pair& y) {
       const std::uint64_t cx = tree.morton_code(x.first), cy = tree.morton_code(y.first);
@@ -543,7 +576,7 @@ private:
     std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
                      [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
-    std::vector<std::uint32_t>().swap(candidate_of_);
+    Uninitialized_vector<std::uint32_t>().swap(candidate_of_);
     std::vector<std::uint32_t>().swap(rank_);
     release_tolerance_graph();
   }
@@ -1056,7 +1089,7 @@ private:
   // Clusters.
   std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order
   std::vector<size_type> target_;                       // representative of a merged vertex, or none
-  std::vector<std::uint32_t> candidate_of_;             // by vertex: its candidate, or not_candidate
+  Uninitialized_vector<std::uint32_t> candidate_of_;    // by vertex: its candidate, or not_candidate
   std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
   std::vector<std::uint32_t> rank_;                     // by candidate: its position in `lex_order_`
   std::vector<std::uint32_t> mate_of_;                  // vertices sharing a triangle with the representative
