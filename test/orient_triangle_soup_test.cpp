@@ -785,7 +785,7 @@ TEST(OrientTriangleSoup, PinnedOnRealMeshesWithAndWithoutTheirTables)
       std::vector<Point> q = soups[k].second.points;
       std::vector<Triangle> u = soups[k].second.triangles;
       const ST::Adjacency_tables tables(u, q.size());
-      const std::vector<ST::Adjacency_tables::Triangle> before = tables.triangles();
+      const ST::Adjacency_tables::Triangle_vector before = tables.triangles();
       const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables(q, u, &tables, np);
       EXPECT_EQ(fingerprint(q, u, w), expected.fingerprint);
       EXPECT_EQ(tables.triangles(), before);

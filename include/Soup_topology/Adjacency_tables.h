@@ -68,6 +68,12 @@ public:
   using size_type = std::uint32_t;
   /// the three vertex indices of a triangle.
   using Triangle = std::array<size_type, 3>;
+  /// the container of `triangles()`: a `std::vector` of `Triangle` whose allocator leaves the
+  /// elements that `resize()` adds unwritten (the parallel construction writes every triangle on
+  /// the thread of its block, and nothing zeroes them before). Compare it with a
+  /// `std::vector<Triangle>` element by element (`std::equal`), or copy it into one by its
+  /// iterators.
+  using Triangle_vector = internal::Uninitialized_vector<Triangle>;
   /// the value of `neighbor(t, i)` for an edge that belongs to `t` alone.
   static constexpr size_type border_edge = static_cast<size_type>(-1);
   /// the value of `neighbor(t, i)` for an edge shared by three or more triangles.
@@ -135,7 +141,7 @@ public:
     constexpr bool random_access = std::is_base_of<std::random_access_iterator_tag,
       typename std::iterator_traits<Face_iterator>::iterator_category>::value;
     if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && random_access) {
-      triangles_.resize(m);
+      triangles_.resize(m); // unwritten: every triangle is written below, on the thread of its block
       internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
         const auto& f = *(std::begin(faces) + static_cast<std::ptrdiff_t>(t));
         triangles_[t] = {static_cast<size_type>(internal::corner(f, 0, t)),
@@ -166,7 +172,7 @@ public:
   /// \param t a triangle index, in `[0, number_of_triangles())`
   const Triangle& triangle(size_type t) const { return triangles_[t]; }
   /// all triangles, in index order (they change with `replace_vertex()` and `split_triangle()`).
-  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const Triangle_vector& triangles() const { return triangles_; }
   /// vertex `i` (0, 1 or 2) of triangle `t`.
   /// \param t a triangle index, in `[0, number_of_triangles())`
   /// \param i the local index of the vertex, 0, 1 or 2
@@ -826,7 +832,7 @@ private:
     --vertex_size_[v];
   }
 
-  std::vector<Triangle> triangles_;
+  Triangle_vector triangles_;
   // Vertex table: compressed rows with spare capacity; a row that outgrows its capacity moves to
   // the end of `ids_` (amortised constant time per insertion).
   // (`Uninitialized_vector`: a build writes every entry of these tables, on TBB's threads in the

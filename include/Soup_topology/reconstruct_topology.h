@@ -435,7 +435,7 @@ public:
     using Collinear_tag =
       std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
     const typename Geom_traits::Collinear_3 collinear = gt_.collinear_3_object();
-    const std::vector<Adjacency_tables::Triangle>& final_triangles = tables_->triangles();
+    const Adjacency_tables::Triangle_vector& final_triangles = tables_->triangles();
     std::vector<Adjacency_tables::size_type> collinear_triangles;
     append_indices_where<Collinear_tag>(final_triangles.size(), [&](std::size_t k) {
       const Adjacency_tables::Triangle& t = final_triangles[k];
