@@ -14,6 +14,7 @@
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/separate_non_manifold.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/number_utils.h>
 
@@ -711,7 +712,7 @@ private:
   {
     const std::size_t number_of_patches = patch_begin_.size() - 1;
     turn_.assign(number_of_patches, 0);
-    xyz_.resize(input_points_);
+    xyz_.resize(input_points_); // unwritten: every entry is written below, on the thread of its block
     for_each_index<ConcurrencyTag>(input_points_, [&](std::size_t v) {
       xyz_[v] = {CGAL::to_double(points_[v].x()), CGAL::to_double(points_[v].y()), CGAL::to_double(points_[v].z())};
     });
@@ -771,7 +772,7 @@ private:
   // copy of its vertex (a soup without non-manifold vertices), every corner then keeping its own
   std::vector<std::size_t> corner_vertex_;
   std::vector<std::size_t> shared_non_manifold_corners_; // `list_shared_non_manifold_corners()`
-  std::vector<std::array<double, 3>> xyz_;
+  Uninitialized_vector<std::array<double, 3>> xyz_; // written whole by blocks before it is read
 };
 
 // Copies what an orientation changed (`duplicate_triangles`, `orientation_flips` and
