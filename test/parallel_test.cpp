@@ -20,6 +20,7 @@
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/soup_statistics.h>
 #include <Soup_topology/split_t_junctions.h>
+#include <Soup_topology/internal/first_equal_points_by_blocks.h>
 #include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/internal/snap_vertices_worker.h>
 #include <Soup_topology/internal/tolerance_graph.h>
@@ -44,6 +45,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -228,6 +230,67 @@ TEST_P(ParallelRealMesh, IndexTrianglesOfTheExplodedMesh)
   expect_same_index(soup);
   shuffle_triangles(soup, 5);
   expect_same_index(soup);
+}
+
+// The exact weld by blocks against the single table of `first_equal_points()`, an independent
+// implementation (and a map, on the small soup), on corner lists of many blocks: an exploded
+// mesh in file order (most copies of a corner in its block), the same corners shuffled (nearly
+// every point its block's representative: several rounds of copies), and points repeated over
+// the whole range with -0.0 beside 0.0. Every budget of copies, on every number of threads.
+std::vector<Point> exploded_corners(const std::string& relative, bool shuffled)
+{
+  Mesh_data m = load(relative);
+  soup_test::subdivide_midpoints(m.points, m.triangles);
+  std::vector<Point> corners;
+  for(const Triangle& t : m.triangles)
+    for(std::size_t v : t) corners.push_back(m.points[v]);
+  if(shuffled) std::shuffle(corners.begin(), corners.end(), std::mt19937(11));
+  return corners;
+}
+
+std::vector<Point> repeated_points_far_apart()
+{
+  std::vector<Point> points;
+  const std::size_t n = 3 * ST::internal::default_block_size + 7;
+  for(std::size_t i = 0; i < n; ++i) {
+    const double a = static_cast<double>((i * 7919) % 97), b = static_cast<double>(i % 5);
+    // the sign of zero changes every other period of 97
+    const double zero = (i / 97) % 2 == 0 ? 0.0 : -0.0;
+    points.emplace_back(a, b == 0 ? zero : b, zero);
+  }
+  return points;
+}
+
+TEST(ParallelExactWeld, ByBlocksGivesTheFirstPointOfTheSingleTable)
+{
+  const std::vector<std::vector<Point>> lists = {exploded_corners("clean/ChineseDragon-10kv.off.xz", false),
+                                                 exploded_corners("clean/ChineseDragon-10kv.off.xz", true),
+                                                 repeated_points_far_apart()};
+  for(const std::vector<Point>& points : lists) {
+    const std::size_t n = points.size();
+    ASSERT_GT(n, 2 * ST::internal::default_block_size);
+    auto point = [&](std::size_t i) -> const Point& { return points[i]; };
+    const auto table = ST::internal::first_equal_points(n, point);
+    const std::vector<std::uint32_t> expected(table.begin(), table.end());
+    if(n < 100000) {
+      std::map<std::array<double, 3>, std::uint32_t> first;
+      for(std::size_t i = 0; i < n; ++i) {
+        // (0.0 + x turns -0.0 into 0.0: the two are equal points)
+        const std::array<double, 3> key = {0.0 + points[i].x(), 0.0 + points[i].y(), 0.0 + points[i].z()};
+        first.emplace(key, static_cast<std::uint32_t>(i));
+        ASSERT_EQ(expected[i], first.at(key)) << i;
+      }
+    }
+    for(const std::size_t budget : {std::size_t(0), ST::internal::default_block_size, n / 3, n}) {
+      SCOPED_TRACE("points: " + std::to_string(n) + ", budget: " + std::to_string(budget));
+      const auto sequential = ST::internal::first_equal_points_by_blocks<CGAL::Sequential_tag>(n, point, budget);
+      EXPECT_EQ(std::vector<std::uint32_t>(sequential.begin(), sequential.end()), expected);
+      for_each_thread_count([&](int) {
+        const auto parallel = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget);
+        EXPECT_EQ(std::vector<std::uint32_t>(parallel.begin(), parallel.end()), expected);
+      });
+    }
+  }
 }
 
 TEST_P(ParallelRealMesh, AdjacencyTables)

@@ -9,6 +9,7 @@
 
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/first_equal_points_by_blocks.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/uninitialized_vector.h>
@@ -57,78 +58,7 @@ template <class ConcurrencyTag, class Point>
 using Point_concurrency =
   std::conditional_t<runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag, CGAL::Sequential_tag>;
 
-/// `first_equal_points(n, point)`, the same result computed in parallel when `ConcurrencyTag`
-/// asks for it. Coordinates stored as `double`: the points are cut into 256 partitions by their
-/// hash (equal points share a partition), each partition keeps its points in increasing index
-/// order, and each is welded by its own hash table, so the first point met of every class is its
-/// smallest index, as in the sequential pass. Other number types are welded sequentially: the
-/// comparisons of lazily exact numbers update state shared between the points.
-template <class ConcurrencyTag, class PointAccess>
-Uninitialized_vector<std::uint32_t> first_equal_points_in_parallel(std::size_t n, const PointAccess& point)
-{
-  using Point = std::decay_t<decltype(point(std::size_t(0)))>;
-  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
-  if constexpr(!runs_in_parallel<ConcurrencyTag>() || !std::is_same<FT, double>::value) {
-    return first_equal_points(n, point);
-  } else {
-    // The partitions cost a pass of their own: on one thread, the sequential weld.
-    if(!runs_on_several_threads<ConcurrencyTag>()) return first_equal_points(n, point);
-    // (`Uninitialized_vector`: the arrays of this pass are written whole on TBB's threads, and
-    // nothing zeroes them before)
-    Uninitialized_vector<std::uint32_t> first_of(n);
-    if(n == 0) return first_of;
-    {
-      auto hash_of = [&](std::size_t i) {
-        const Point& p = point(i);
-        return mix_bits(double_bits(p.x()) ^ mix_bits(double_bits(p.y()) + 0x9e3779b97f4a7c15ULL) ^
-                        (mix_bits(double_bits(p.z())) << 1));
-      };
-      constexpr std::size_t partitions = 256;
-      const std::size_t block_size = default_block_size, blocks = number_of_blocks(n, block_size);
-      Uninitialized_vector<std::uint8_t> partition_of(n);
-      // count[p * blocks + b]: the points of block b in partition p; partition-major prefix sums
-      // place the points of a partition in increasing index order.
-      std::vector<std::uint32_t> count(partitions * blocks, 0);
-      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-        for(std::size_t i = begin; i != end; ++i) {
-          const std::uint8_t q = static_cast<std::uint8_t>(hash_of(i) >> 56);
-          partition_of[i] = q;
-          ++count[q * blocks + b];
-        }
-      });
-      std::vector<std::size_t> partition_begin(partitions + 1, 0);
-      {
-        std::size_t total = 0;
-        for(std::size_t q = 0; q < partitions; ++q) {
-          partition_begin[q] = total;
-          for(std::size_t b = 0; b < blocks; ++b) {
-            const std::size_t c = count[q * blocks + b];
-            count[q * blocks + b] = static_cast<std::uint32_t>(total);
-            total += c;
-          }
-        }
-        partition_begin[partitions] = total;
-      }
-      Uninitialized_vector<std::uint32_t> order(n);
-      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-        for(std::size_t i = begin; i != end; ++i)
-          order[count[partition_of[i] * blocks + b]++] = static_cast<std::uint32_t>(i);
-      });
-      Uninitialized_vector<std::uint8_t>().swap(partition_of);
-      for_each_block<ConcurrencyTag>(partitions, 1, [&](std::size_t q, std::size_t, std::size_t) {
-        const std::uint32_t* ids = order.data() + partition_begin[q];
-        const std::size_t m = partition_begin[q + 1] - partition_begin[q];
-        const Uninitialized_vector<std::uint32_t> local =
-          // what `point` returns: a reference, or a point decoded on the fly (binary STL)
-          first_equal_points(m, [&](std::size_t k) -> decltype(auto) { return point(ids[k]); });
-        for(std::size_t k = 0; k < m; ++k) first_of[ids[k]] = ids[local[k]];
-      });
-    }
-    return first_of;
-  }
-}
-
-/// `index_corners()` computed in parallel (see `first_equal_points_in_parallel()`): the points
+/// `index_corners()` computed in parallel (see `first_equal_points_by_blocks()`): the points
 /// are numbered by the rank of their first corner, found by prefix sums over blocks, so the
 /// points, the triangles and their order are those of the sequential pass.
 template <class ConcurrencyTag, class CornerAccess, class PointRange, class FaceRange>
@@ -137,7 +67,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
 {
   using Face = typename FaceRange::value_type;
   const Uninitialized_vector<std::uint32_t> first_of =
-    first_equal_points_in_parallel<ConcurrencyTag>(corners, corner_point);
+    first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point);
   Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners below, then the others
   points.clear();
   const std::size_t distinct = compact_in_order<ConcurrencyTag>(
@@ -180,7 +110,7 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
   using Face = typename FaceRange::value_type;
   // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
   // of the point of corner i (a first corner is read before any later one is renumbered).
-  Uninitialized_vector<std::uint32_t> point_of = first_equal_points(corners, corner_point);
+  Uninitialized_vector<std::uint32_t> point_of = first_equal_points_by_blocks<CGAL::Sequential_tag>(corners, corner_point);
   // The points are counted first so that `points` holds exactly them, without the spare room
   // of a vector grown one point at a time.
   std::size_t distinct = 0;
@@ -277,7 +207,8 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
   if(bad != corners)
     throw Invalid_input("triangle " + std::to_string(bad / 3) + ", corner " + std::to_string(bad % 3) +
                         ": non-finite coordinate");
-  if constexpr(internal::runs_in_parallel<Tag>())
+  // (on one thread, the sequential pass: it renumbers in place, with fewer arrays to fill)
+  if(internal::runs_on_several_threads<Tag>())
     internal::index_corners_in_parallel<Tag>(corners, corner_point, points, faces, report);
   else
     internal::index_corners(corners, corner_point, points, faces, report);
@@ -304,7 +235,7 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   const std::size_t bad = first_index_where<Tag>(n, [&](std::size_t i) { return !is_finite_point(points[i]); });
   if(bad != n) throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
   const Uninitialized_vector<std::uint32_t> first_of =
-    first_equal_points_in_parallel<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; });
+    first_equal_points_by_blocks<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; });
   std::vector<std::size_t> new_index(n);
   if constexpr(runs_in_parallel<Tag>()) {
     // the kept points are numbered by prefix sums over blocks and copied out of place

@@ -215,7 +215,7 @@ void read_STL_soup(const char* data, std::size_t size, const std::string& name, 
     check_finite_facets<Tag>(count, corner_point, name);
     ir.input_triangles = count;
     ir.input_corners = 3 * count;
-    // (the partitioned weld does more work in all: on one thread, the sequential one, same result)
+    // (the parallel renumbering fills more arrays: on one thread, the sequential one, same result)
     if(Soup_topology::internal::runs_on_several_threads<Tag>())
       Soup_topology::internal::index_corners_in_parallel<Tag>(ir.input_corners, corner_point, pts, tris, ir);
     else

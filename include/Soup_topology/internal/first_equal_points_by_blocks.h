@@ -1,0 +1,216 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// The exact weld of many points with `double` coordinates, by blocks: the same result as
+// `first_equal_points()` (the first point of every class of equal points), computed with small
+// hash tables that stay in cache, on TBB's threads when the concurrency tag asks for it.
+//
+// A soup keeps the copies of a point close together: an STL file, an exploded mesh or a scan
+// lists a triangle's neighbours near it, so that most of the six or so copies of a corner fall in
+// the same block of 16,384 points. The weld has three passes:
+// 1. every block is welded alone: the first point of each class inside the block, its block
+//    representative, is found with a table of the block's size; the other points of the block
+//    name it. The representatives are counted by block and by partition (the top 8 bits of their
+//    hash: equal points share a partition).
+// 2. the representatives' coordinates and indices are copied out, partition by partition, each in
+//    increasing index order (the counts' prefix sums, partition-major, give every block its
+//    place); every partition is welded by a table of its own, reading the copies one after the
+//    other. The first representative of a class is its smallest index over the whole range.
+// 3. every point takes the class's first point from its block representative.
+// The single table of `first_equal_points()` misses the cache on nearly every point of a large
+// soup (a probe, and the coordinates of the point it finds); here only the copy of the
+// representatives does, and it writes in 256 streams. The copies take 32 bytes a representative;
+// when the representatives are more than a quarter of the points (a shuffled soup), they are
+// copied and welded by rounds of consecutive partitions, each round rereading the points, so that
+// the copies never take more than 8 bytes a point.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_FIRST_EQUAL_POINTS_BY_BLOCKS_H
+#define SOUP_TOPOLOGY_INTERNAL_FIRST_EQUAL_POINTS_BY_BLOCKS_H
+
+#include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/parallel.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
+
+#include <CGAL/Kernel_traits.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// the hash of the exact weld: equal coordinates (-0.0 and 0.0 included) give equal hashes.
+inline std::uint64_t hash_of_coordinates(double x, double y, double z)
+{
+  return mix_bits(double_bits(x) ^ mix_bits(double_bits(y) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(double_bits(z)) << 1));
+}
+
+/// An open-addressing table of positions of points, keyed by 32 bits of their hash, for the
+/// passes of `first_equal_points_by_blocks()`: `find_or_insert(position, fingerprint, equal)`
+/// returns the position of the first point inserted with an equal fingerprint for which
+/// `equal(that position)` holds, or inserts `position` and returns it. It grows 4 times at half
+/// load.
+class Fingerprint_table
+{
+public:
+  explicit Fingerprint_table(std::size_t expected)
+  {
+    while(capacity_ < expected) capacity_ *= 2;
+    slots_.assign(capacity_, Slot{empty, 0});
+  }
+
+  template <class Equal>
+  std::uint32_t find_or_insert(std::uint32_t position, std::uint32_t fingerprint, const Equal& equal)
+  {
+    std::size_t s = fingerprint & (capacity_ - 1);
+    for(;;) {
+      const Slot slot = slots_[s];
+      if(slot.position == empty) {
+        slots_[s] = Slot{position, fingerprint};
+        if(2 * ++size_ > capacity_) grow();
+        return position;
+      }
+      if(slot.fingerprint == fingerprint && equal(slot.position)) return slot.position;
+      s = (s + 1) & (capacity_ - 1);
+    }
+  }
+
+private:
+  static constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
+  struct Slot { std::uint32_t position, fingerprint; };
+
+  void grow()
+  {
+    std::vector<Slot> old(capacity_ * 4, Slot{empty, 0});
+    old.swap(slots_);
+    capacity_ *= 4;
+    for(const Slot& o : old) {
+      if(o.position == empty) continue;
+      std::size_t s = o.fingerprint & (capacity_ - 1);
+      while(slots_[s].position != empty) s = (s + 1) & (capacity_ - 1);
+      slots_[s] = o;
+    }
+  }
+
+  std::size_t capacity_ = 16, size_ = 0;
+  std::vector<Slot> slots_;
+};
+
+/// `first_of[i]` = the smallest index j with `point(j) == point(i)`, for the `n` points
+/// `point(0)`, ..., `point(n - 1)` (kernel points, returned by reference or by value): the result
+/// of `first_equal_points(n, point)`, computed by blocks (see the top of this file), on TBB's
+/// threads when `ConcurrencyTag` asks for it. Other number types than `double` go to
+/// `first_equal_points()` (lazily exact numbers share state between copies), as do the soups of
+/// one block. `key_budget`: the most representatives copied at once (0: a quarter of `n`, at
+/// least one block); the result does not depend on it.
+template <class ConcurrencyTag, class PointAccess>
+Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, const PointAccess& point,
+                                                                 std::size_t key_budget = 0)
+{
+  using Point = std::decay_t<decltype(point(std::size_t(0)))>;
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  constexpr std::size_t block_size = default_block_size;
+  if constexpr(!std::is_same<FT, double>::value) {
+    return first_equal_points(n, point);
+  } else {
+    if(n <= block_size) return first_equal_points(n, point);
+    constexpr std::size_t partitions = 256;
+    auto partition = [](std::uint64_t hash) { return static_cast<std::size_t>(hash >> 56); };
+    // the other bits of the hash: the slot of a point in a table
+    auto fingerprint = [](std::uint64_t hash) { return static_cast<std::uint32_t>(hash >> 24); };
+    const std::size_t blocks = number_of_blocks(n, block_size);
+    // (`Uninitialized_vector`: written whole by the blocks, which fault in its pages)
+    Uninitialized_vector<std::uint32_t> first_of(n);
+
+    // 1. Each block alone; representatives[b * partitions + q]: those of block b in partition q.
+    std::vector<std::uint32_t> representatives(blocks * partitions, 0);
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::uint32_t* count = representatives.data() + b * partitions;
+      Fingerprint_table table(2 * (end - begin));
+      for(std::size_t i = begin; i != end; ++i) {
+        const Point& p = point(i);
+        const double x = p.x(), y = p.y(), z = p.z();
+        const std::uint64_t hash = hash_of_coordinates(x, y, z);
+        first_of[i] = table.find_or_insert(static_cast<std::uint32_t>(i), fingerprint(hash), [&](std::uint32_t j) {
+          const Point& o = point(j);
+          return o.x() == x && o.y() == y && o.z() == z;
+        });
+        if(first_of[i] == i) ++count[partition(hash)];
+      }
+    });
+
+    // 2. The representatives, partition by partition. Partition-major prefix sums: `place[b *
+    // partitions + q]` is where block b writes its first representative of partition q.
+    std::vector<std::size_t> partition_begin(partitions + 1, 0);
+    std::vector<std::uint32_t>& place = representatives;
+    {
+      std::size_t total = 0;
+      for(std::size_t q = 0; q < partitions; ++q) {
+        partition_begin[q] = total;
+        for(std::size_t b = 0; b < blocks; ++b) {
+          const std::size_t c = place[b * partitions + q];
+          place[b * partitions + q] = static_cast<std::uint32_t>(total);
+          total += c;
+        }
+      }
+      partition_begin[partitions] = total;
+    }
+    if(key_budget == 0) key_budget = n / 4;
+    key_budget = std::max({key_budget, block_size, std::size_t(1)});
+    struct Key { double x, y, z; std::uint32_t index, fingerprint; };
+    Uninitialized_vector<Key> keys(std::min(key_budget, partition_begin[partitions]));
+    for(std::size_t first = 0; first < partitions;) {
+      // the round: partitions [first, last), whose copies fit in the budget (one at least)
+      std::size_t last = first + 1;
+      while(last < partitions && partition_begin[last + 1] - partition_begin[first] <= keys.size()) ++last;
+      const std::size_t base = partition_begin[first], round_size = partition_begin[last] - base;
+      if(round_size > keys.size()) keys.resize(round_size);
+      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        std::uint32_t* next = place.data() + b * partitions;
+        for(std::size_t i = begin; i != end; ++i) {
+          if(first_of[i] != i) continue;
+          const Point& p = point(i);
+          const double x = p.x(), y = p.y(), z = p.z();
+          const std::uint64_t hash = hash_of_coordinates(x, y, z);
+          const std::size_t q = partition(hash);
+          if(q < first || q >= last) continue;
+          keys[next[q]++ - base] = Key{x, y, z, static_cast<std::uint32_t>(i), fingerprint(hash)};
+        }
+      });
+      for_each_block<ConcurrencyTag>(last - first, 1, [&](std::size_t r, std::size_t, std::size_t) {
+        const Key* k = keys.data() + (partition_begin[first + r] - base);
+        const std::size_t m = partition_begin[first + r + 1] - partition_begin[first + r];
+        Fingerprint_table table(m);
+        for(std::size_t j = 0; j < m; ++j) {
+          const Key& key = k[j];
+          const std::uint32_t found = table.find_or_insert(static_cast<std::uint32_t>(j), key.fingerprint, [&](std::uint32_t o) {
+            return k[o].x == key.x && k[o].y == key.y && k[o].z == key.z;
+          });
+          // (a representative not first of its class is written once, by its partition's task)
+          if(found != j) first_of[key.index] = k[found].index;
+        }
+      });
+      first = last;
+    }
+
+    // 3. A point other than its block's representative names that representative, below it in
+    // the same block. A representative names the first point of its class now (itself, or a
+    // point of an earlier block), which names itself: nothing read here is written by another
+    // block.
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i) {
+        const std::uint32_t r = first_of[i];
+        if(r != i) first_of[i] = first_of[r];
+      }
+    });
+    return first_of;
+  }
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_FIRST_EQUAL_POINTS_BY_BLOCKS_H
