@@ -290,10 +290,12 @@ private:
         return false;
       };
       const std::size_t n = points_.size();
-      std::vector<size_type> found(n);
+      // (written by the blocks up to `count`, and kept: the pages past it are never touched)
+      Uninitialized_vector<size_type> found(n);
       const std::size_t count = compact_in_order<ConcurrencyTag>(
         n, on_border, [&](std::size_t v, std::size_t position) { found[position] = static_cast<size_type>(v); });
-      candidates_.assign(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(count));
+      found.resize(count);
+      candidates_.swap(found);
     } else {
       std::vector<char> on_border(points_.size(), 0);
       for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
@@ -316,8 +318,16 @@ private:
   void build_tolerance_graph()
   {
     const std::size_t n = candidates_.size();
-    candidate_points_.reserve(n);
-    for(size_type v : candidates_) candidate_points_.push_back(point(v));
+    if(parallel_ && std::is_same<FT, double>::value) {
+      // (a default point of `double` coordinates is not written: the blocks fault in the pages)
+      candidate_points_.resize(n);
+      for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t c = begin; c != end; ++c) candidate_points_[c] = point(candidates_[c]);
+      });
+    } else {
+      candidate_points_.reserve(n);
+      for(size_type v : candidates_) candidate_points_.push_back(point(v));
+    }
     // The order of the clusters, sorted here: its scratch is freed before the octree and the
     // rows are built (the peak memory of the weld).
     sort_candidates_lexicographically();
@@ -1074,7 +1084,7 @@ private:
   const std::vector<FT>* tolerances_;                   // per point, or null: eps_ for every pair
   Snap_report report_;
   // Candidates and the tolerance graph over them (local ids).
-  std::vector<size_type> candidates_;
+  Uninitialized_vector<size_type> candidates_;
   std::vector<Point> candidate_points_;
   std::unique_ptr<Octree<Kernel>> tree_;
   std::vector<Pair> same_triangle_pairs_;
