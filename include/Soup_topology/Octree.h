@@ -1407,23 +1407,28 @@ private:
     return keys;
   }
 
-  // `sort_keys()` on TBB's threads: the keys are made in index order, so a stable radix sort by
-  // code (`internal::sort_by_key()`, over all the bits of the codes) orders them by (code, id)
-  // as `sort_keys()` does
+  // `sort_keys()` on TBB's threads, by the same steps: the keys are made in index order, so the
+  // stable radix sort (`internal::sort_by_digits()`) of the most significant bits orders them by
+  // (those bits, id); each run of keys that share those bits is then sorted by the block of keys
+  // where it starts
   template <typename Tag>
   void sort_keys_in_parallel(Keys& keys) const
   {
-    struct Item
+    const unsigned bits = 3 * depth_;
+    const unsigned low = bits - std::min(bits, 33u);
     {
-      std::uint64_t key;
-      std::uint32_t id;
-    };
-    // written whole by the passes on TBB's threads before they are read
-    internal::Uninitialized_vector<Item> items(keys.size()), buffer;
-    internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { items[i] = Item{keys[i].code, keys[i].id}; });
-    internal::sort_by_key<Tag>(items, buffer, 3 * depth_);
-    internal::Uninitialized_vector<Item>().swap(buffer);
-    internal::for_each_index<Tag>(keys.size(), [&](std::size_t i) { keys[i] = Key{items[i].key, items[i].id}; });
+      Keys buffer;
+      internal::sort_by_digits<Tag>(keys, buffer, low, bits, 11, [](const Key& k) { return k.code; });
+    }
+    if(low == 0)
+      return;
+    const std::size_t n = keys.size();
+    internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::size_t b = begin;
+      while(b != 0 && b < end && (keys[b].code >> low) == (keys[begin - 1].code >> low))
+        ++b; // the run of the block before
+      sort_runs(keys, b, end, low);
+    });
   }
 
   // step 4: the points in the order of the keys, with their indices both ways
@@ -1537,10 +1542,17 @@ private:
     }
     if(low == 0)
       return;
+    sort_runs(keys, 0, keys.size(), low);
+  }
+
+  // sorts by (code, id) each run of keys that share the bits above `low` and starts in
+  // [first, last) (it may end after `last`)
+  static void sort_runs(Keys& keys, std::size_t first, std::size_t last, unsigned low)
+  {
     const auto less = [](const Key& x, const Key& y) {
       return x.code < y.code || (x.code == y.code && x.id < y.id);
     };
-    for(std::size_t b = 0; b < keys.size();)
+    for(std::size_t b = first; b < last;)
     {
       std::size_t e = b + 1;
       while(e < keys.size() && (keys[e].code >> low) == (keys[b].code >> low))

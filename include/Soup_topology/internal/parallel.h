@@ -266,46 +266,61 @@ void radix_sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
   }
 }
 
+/// a stable sort of `items` by the digits of `digit_bits` bits of `key_of(item)` (an unsigned
+/// integer) that start at bits `low`, `low + digit_bits`, ... below `high`: one pass of counts and
+/// one scatter a digit, from the lowest, the passes whose digit is the same for all skipped. On
+/// TBB's threads when `ConcurrencyTag` asks for it and the items are many: each pass counts the
+/// digits of 16 blocks of items in parallel, places the items of a block after those of the
+/// blocks before it with the same digit, and scatters the blocks in parallel. A stable sort has
+/// one result, on any number of threads. `Items` is a `std::vector`; with an
+/// `Uninitialized_vector`, the scratch space `buffer` is first written by the parallel passes,
+/// not zeroed by one thread before.
+template <class ConcurrencyTag, class Items, class KeyOf>
+void sort_by_digits(Items& items, Items& buffer, unsigned low, unsigned high, unsigned digit_bits, const KeyOf& key_of)
+{
+  const std::size_t n = items.size();
+  if(n < 2) return;
+  const std::size_t digits = std::size_t(1) << digit_bits;
+  const std::uint64_t mask = digits - 1;
+  const std::size_t block_size = runs_in_parallel<ConcurrencyTag>() && n >= (std::size_t(1) << 20) ? (n + 15) / 16 : n;
+  const std::size_t blocks = number_of_blocks(n, block_size);
+  buffer.resize(n);
+  std::vector<std::size_t> offset(blocks * digits); // by block, then digit
+  for(unsigned shift = low; shift < high; shift += digit_bits) {
+    auto digit = [&](std::size_t i) { return static_cast<std::size_t>((static_cast<std::uint64_t>(key_of(items[i])) >> shift) & mask); };
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t* const count = offset.data() + b * digits;
+      std::fill(count, count + digits, 0);
+      for(std::size_t i = begin; i != end; ++i) ++count[digit(i)];
+    });
+    const std::size_t first_digit = digit(0);
+    std::size_t with_first_digit = 0;
+    for(std::size_t b = 0; b < blocks; ++b) with_first_digit += offset[b * digits + first_digit];
+    if(with_first_digit == n) continue; // one digit for all: already in order
+    std::size_t sum = 0;
+    for(std::size_t d = 0; d < digits; ++d)
+      for(std::size_t b = 0; b < blocks; ++b) {
+        std::size_t& c = offset[b * digits + d];
+        const std::size_t here = c;
+        c = sum;
+        sum += here;
+      }
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t* const next = offset.data() + b * digits;
+      for(std::size_t i = begin; i != end; ++i) buffer[next[digit(i)]++] = items[i];
+    });
+    items.swap(buffer);
+  }
+}
+
 /// `radix_sort_by_key()`, on TBB's threads when `ConcurrencyTag` asks for it and the items are
-/// many: each pass counts the digits of 16 blocks of items in parallel, places the items of a
-/// block after those of the blocks before it with the same digit, and scatters the blocks in
-/// parallel. A stable sort by key has one result: it is that of `radix_sort_by_key()`.
-/// `Items` is a `std::vector` of the items; with an `Uninitialized_vector`, the scratch space is
-/// first written by the parallel passes, not zeroed by one thread before.
+/// many (`sort_by_digits()` of 16 bits): the same result.
 template <class ConcurrencyTag, class Items>
 void sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
 {
-  const std::size_t n = items.size();
   if constexpr(runs_in_parallel<ConcurrencyTag>()) {
-    if(n >= (std::size_t(1) << 20)) {
-      constexpr std::size_t digits = std::size_t(1) << 16;
-      const std::size_t block_size = (n + 15) / 16, blocks = number_of_blocks(n, block_size);
-      buffer.resize(n);
-      std::vector<std::size_t> offset(blocks * digits); // by block, then digit
-      for(unsigned shift = 0; shift < bits; shift += 16) {
-        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-          std::size_t* const count = offset.data() + b * digits;
-          std::fill(count, count + digits, 0);
-          for(std::size_t i = begin; i != end; ++i) ++count[(items[i].key >> shift) & 0xffff];
-        });
-        const std::size_t first_digit = (items[0].key >> shift) & 0xffff;
-        std::size_t with_first_digit = 0;
-        for(std::size_t b = 0; b < blocks; ++b) with_first_digit += offset[b * digits + first_digit];
-        if(with_first_digit == n) continue; // one digit for all: already in order
-        std::size_t sum = 0;
-        for(std::size_t d = 0; d < digits; ++d)
-          for(std::size_t b = 0; b < blocks; ++b) {
-            std::size_t& c = offset[b * digits + d];
-            const std::size_t here = c;
-            c = sum;
-            sum += here;
-          }
-        for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-          std::size_t* const next = offset.data() + b * digits;
-          for(std::size_t i = begin; i != end; ++i) buffer[next[(items[i].key >> shift) & 0xffff]++] = items[i];
-        });
-        items.swap(buffer);
-      }
+    if(items.size() >= (std::size_t(1) << 20)) {
+      sort_by_digits<ConcurrencyTag>(items, buffer, 0, bits, 16, [](const auto& item) { return item.key; });
       return;
     }
   }
