@@ -599,9 +599,9 @@ private:
     tree_.reset();
     std::vector<Point>().swap(candidate_points_);
     std::deque<std::vector<std::uint32_t>>().swap(rows_);
-    std::vector<std::uint32_t>().swap(row_buffer_);
-    std::vector<std::uint32_t>().swap(row_start_);
-    std::vector<std::uint32_t>().swap(row_size_);
+    Uninitialized_vector<std::uint32_t>().swap(row_buffer_);
+    Uninitialized_vector<std::uint32_t>().swap(row_start_);
+    Uninitialized_vector<std::uint32_t>().swap(row_size_);
   }
 
   // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
@@ -1092,12 +1092,14 @@ private:
   bool dense_ = false;
   bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
   std::deque<std::vector<std::uint32_t>> rows_;         // the rows of neighbours, in one buffer per thread
-  std::vector<std::uint32_t> row_buffer_;               // by candidate: the buffer of its row (empty: the first)
-  std::vector<std::uint32_t> row_start_;                // by candidate: where its row begins in its buffer (4 bytes:
+  // (the arrays by candidate below are `Uninitialized_vector`s: the search writes every candidate's
+  // entry, once each, on the thread that finds its neighbourhood)
+  Uninitialized_vector<std::uint32_t> row_buffer_;      // by candidate: the buffer of its row (empty: the first)
+  Uninitialized_vector<std::uint32_t> row_start_;       // by candidate: where its row begins in its buffer (4 bytes:
                                                         // a buffer holds at most `row_buffer_limit` entries)
-  std::vector<std::uint32_t> row_size_;                 // by candidate: the length of its row (fewer than the candidates)
+  Uninitialized_vector<std::uint32_t> row_size_;        // by candidate: the length of its row (fewer than the candidates)
   // Clusters.
-  std::vector<std::uint32_t> lex_order_;                // candidates in lexicographic order
+  Uninitialized_vector<std::uint32_t> lex_order_;       // candidates in lexicographic order (written whole)
   std::vector<size_type> target_;                       // representative of a merged vertex, or none
   Uninitialized_vector<std::uint32_t> candidate_of_;    // by vertex: its candidate, or not_candidate
   std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
