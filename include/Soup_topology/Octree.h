@@ -1422,12 +1422,18 @@ private:
     }
     if(low == 0)
       return;
+    // First where the runs start (reading only), so that each block sorts whole runs that no
+    // other block reads: those that start in [run_start[b], run_start[b + 1]).
     const std::size_t n = keys.size();
-    internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
-      std::size_t b = begin;
-      while(b != 0 && b < end && (keys[b].code >> low) == (keys[begin - 1].code >> low))
-        ++b; // the run of the block before
-      sort_runs(keys, b, end, low);
+    std::vector<std::size_t> run_start(internal::number_of_blocks(n) + 1, n);
+    internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t s = begin;
+      while(s != 0 && s < end && (keys[s].code >> low) == (keys[s - 1].code >> low))
+        ++s; // the run of the block before
+      run_start[b] = s;
+    });
+    internal::for_each_block<Tag>(n, internal::default_block_size, [&](std::size_t b, std::size_t, std::size_t) {
+      sort_runs(keys, run_start[b], run_start[b + 1], low);
     });
   }
 
@@ -1545,8 +1551,8 @@ private:
     sort_runs(keys, 0, keys.size(), low);
   }
 
-  // sorts by (code, id) each run of keys that share the bits above `low` and starts in
-  // [first, last) (it may end after `last`)
+  // sorts by (code, id) each run of keys that share the bits above `low` in [first, last), which
+  // starts and ends with a run
   static void sort_runs(Keys& keys, std::size_t first, std::size_t last, unsigned low)
   {
     const auto less = [](const Key& x, const Key& y) {
@@ -1555,7 +1561,7 @@ private:
     for(std::size_t b = first; b < last;)
     {
       std::size_t e = b + 1;
-      while(e < keys.size() && (keys[e].code >> low) == (keys[b].code >> low))
+      while(e < last && (keys[e].code >> low) == (keys[b].code >> low))
         ++e;
       if(e - b > 1)
         std::sort(keys.begin() + std::ptrdiff_t(b), keys.begin() + std::ptrdiff_t(e), less);
