@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
@@ -57,6 +58,65 @@ inline std::uint64_t mix_bits(std::uint64_t h)
   return h;
 }
 
+/// the hash of the exact weld: equal coordinates (-0.0 and 0.0 included) give equal hashes.
+inline std::uint64_t hash_of_coordinates(double x, double y, double z)
+{
+  return mix_bits(double_bits(x) ^ mix_bits(double_bits(y) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(double_bits(z)) << 1));
+}
+
+/// An open-addressing table of positions of points, keyed by 32 bits of their hash, for
+/// `first_equal_points()` and the passes of `first_equal_points_by_blocks()`: each slot holds a
+/// position and its fingerprint, so that most probes that meet another point are rejected
+/// without reading that point's coordinates (a cache miss each). `find_or_insert(position,
+/// fingerprint, equal)` returns the position of the first point inserted with an equal
+/// fingerprint for which `equal(that position)` holds, or inserts `position` and returns it. It
+/// grows 4 times at half load, from the fingerprints alone.
+class Fingerprint_table
+{
+public:
+  explicit Fingerprint_table(std::size_t expected)
+  {
+    while(capacity_ < expected) capacity_ *= 2;
+    slots_.assign(capacity_, Slot{empty, 0});
+  }
+
+  template <class Equal>
+  std::uint32_t find_or_insert(std::uint32_t position, std::uint32_t fingerprint, const Equal& equal)
+  {
+    std::size_t s = fingerprint & (capacity_ - 1);
+    for(;;) {
+      const Slot slot = slots_[s];
+      if(slot.position == empty) {
+        slots_[s] = Slot{position, fingerprint};
+        if(2 * ++size_ > capacity_) grow();
+        return position;
+      }
+      if(slot.fingerprint == fingerprint && equal(slot.position)) return slot.position;
+      s = (s + 1) & (capacity_ - 1);
+    }
+  }
+
+private:
+  static constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
+  struct Slot { std::uint32_t position, fingerprint; };
+
+  void grow()
+  {
+    std::vector<Slot> old(capacity_ * 4, Slot{empty, 0});
+    old.swap(slots_);
+    capacity_ *= 4;
+    for(const Slot& o : old) {
+      if(o.position == empty) continue;
+      std::size_t s = o.fingerprint & (capacity_ - 1);
+      while(slots_[s].position != empty) s = (s + 1) & (capacity_ - 1);
+      slots_[s] = o;
+    }
+  }
+
+  std::size_t capacity_ = 16, size_ = 0;
+  std::vector<Slot> slots_;
+};
+
 /// `first_of[i]` = the smallest index j with `point(j) == point(i)`, where `point(k)` returns
 /// the k-th point (a kernel `Point_3`). `n` points.
 template <class PointAccess>
@@ -69,53 +129,19 @@ Uninitialized_vector<std::uint32_t> first_equal_points(std::size_t n, const Poin
   if(n == 0) return first_of;
 
   if constexpr(std::is_same<FT, double>::value) {
-    // Each slot holds a point index and 32 bits of its hash: most probes that meet another point
-    // are rejected without reading that point's coordinates (a cache miss each). The table is
-    // sized for the distinct points, which soups have far fewer of than corners (an STL soup has
-    // about one distinct point in six corners), and grows at half load: a small table stays in
-    // cache (benchmark/index_triangles_benchmark.cpp measures it).
-    constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
-    struct Slot { std::uint32_t index, fingerprint; };
-    auto hash_of = [](double x, double y, double z) {
-      return mix_bits(double_bits(x) ^ mix_bits(double_bits(y) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(double_bits(z)) << 1));
-    };
-    std::size_t capacity = 16;
-    while(capacity < n / 2) capacity *= 2;
-    std::size_t mask = capacity - 1, distinct = 0;
-    std::vector<Slot> slots(capacity, Slot{empty, 0});
-    auto grow = [&]() {
-      std::vector<Slot> old(capacity * 4, Slot{empty, 0});
-      old.swap(slots);
-      capacity *= 4;
-      mask = capacity - 1;
-      for(const Slot& o : old) {
-        if(o.index == empty) continue;
-        const Point& q = point(o.index);
-        std::size_t s = static_cast<std::size_t>(hash_of(q.x(), q.y(), q.z())) & mask;
-        while(slots[s].index != empty) s = (s + 1) & mask;
-        slots[s] = o;
-      }
-    };
+    // The table is sized for the distinct points, which soups have far fewer of than corners (an
+    // STL soup has about one distinct point in six corners), and grows at half load: a small
+    // table stays in cache (benchmark/index_triangles_benchmark.cpp measures it).
+    Fingerprint_table table(n / 2);
     for(std::size_t i = 0; i < n; ++i) {
       const Point& p = point(i);
       const double x = p.x(), y = p.y(), z = p.z();
-      const std::uint64_t h = hash_of(x, y, z);
-      const std::uint32_t fingerprint = static_cast<std::uint32_t>(h >> 32);
-      std::size_t s = static_cast<std::size_t>(h) & mask;
-      for(;;) {
-        const Slot slot = slots[s];
-        if(slot.index == empty) {
-          slots[s] = Slot{static_cast<std::uint32_t>(i), fingerprint};
-          first_of[i] = static_cast<std::uint32_t>(i);
-          if(2 * ++distinct > capacity) grow();
-          break;
-        }
-        if(slot.fingerprint == fingerprint) {
-          const Point& q = point(slot.index);
-          if(q.x() == x && q.y() == y && q.z() == z) { first_of[i] = slot.index; break; }
-        }
-        s = (s + 1) & mask;
-      }
+      first_of[i] = table.find_or_insert(static_cast<std::uint32_t>(i),
+                                         static_cast<std::uint32_t>(hash_of_coordinates(x, y, z) >> 32),
+                                         [&](std::uint32_t j) {
+                                           const Point& q = point(j);
+                                           return q.x() == x && q.y() == y && q.z() == z;
+                                         });
     }
   } else {
     typename Kernel::Less_xyz_3 less;

@@ -42,63 +42,6 @@
 namespace Soup_topology {
 namespace internal {
 
-/// the hash of the exact weld: equal coordinates (-0.0 and 0.0 included) give equal hashes.
-inline std::uint64_t hash_of_coordinates(double x, double y, double z)
-{
-  return mix_bits(double_bits(x) ^ mix_bits(double_bits(y) + 0x9e3779b97f4a7c15ULL) ^ (mix_bits(double_bits(z)) << 1));
-}
-
-/// An open-addressing table of positions of points, keyed by 32 bits of their hash, for the
-/// passes of `first_equal_points_by_blocks()`: `find_or_insert(position, fingerprint, equal)`
-/// returns the position of the first point inserted with an equal fingerprint for which
-/// `equal(that position)` holds, or inserts `position` and returns it. It grows 4 times at half
-/// load.
-class Fingerprint_table
-{
-public:
-  explicit Fingerprint_table(std::size_t expected)
-  {
-    while(capacity_ < expected) capacity_ *= 2;
-    slots_.assign(capacity_, Slot{empty, 0});
-  }
-
-  template <class Equal>
-  std::uint32_t find_or_insert(std::uint32_t position, std::uint32_t fingerprint, const Equal& equal)
-  {
-    std::size_t s = fingerprint & (capacity_ - 1);
-    for(;;) {
-      const Slot slot = slots_[s];
-      if(slot.position == empty) {
-        slots_[s] = Slot{position, fingerprint};
-        if(2 * ++size_ > capacity_) grow();
-        return position;
-      }
-      if(slot.fingerprint == fingerprint && equal(slot.position)) return slot.position;
-      s = (s + 1) & (capacity_ - 1);
-    }
-  }
-
-private:
-  static constexpr std::uint32_t empty = static_cast<std::uint32_t>(-1);
-  struct Slot { std::uint32_t position, fingerprint; };
-
-  void grow()
-  {
-    std::vector<Slot> old(capacity_ * 4, Slot{empty, 0});
-    old.swap(slots_);
-    capacity_ *= 4;
-    for(const Slot& o : old) {
-      if(o.position == empty) continue;
-      std::size_t s = o.fingerprint & (capacity_ - 1);
-      while(slots_[s].position != empty) s = (s + 1) & (capacity_ - 1);
-      slots_[s] = o;
-    }
-  }
-
-  std::size_t capacity_ = 16, size_ = 0;
-  std::vector<Slot> slots_;
-};
-
 /// `first_of[i]` = the smallest index j with `point(j) == point(i)`, for the `n` points
 /// `point(0)`, ..., `point(n - 1)` (kernel points, returned by reference or by value): the result
 /// of `first_equal_points(n, point)`, computed by blocks (see the top of this file), on TBB's
