@@ -610,6 +610,16 @@ TEST(ParallelSortByKey, StableAndTheSequentialOrder)
   }
   const std::size_t expected_cell = ST::internal::largest_tolerance_cell(cloud, 0.01);
   ASSERT_GE(expected_cell, 7u);
+  // The sequential sort, by digits and (on a prefix of fewer than 4096 items) by comparisons.
+  for(const std::size_t size : {items.size(), std::size_t(4095)}) {
+    std::vector<Item> sorted(items.begin(), items.begin() + std::ptrdiff_t(size)), buffer;
+    std::vector<Item> stable = sorted;
+    std::stable_sort(stable.begin(), stable.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+    ST::internal::sort_by_key<CGAL::Sequential_tag>(sorted, buffer);
+    std::size_t different = 0;
+    for(std::size_t i = 0; i < size; ++i) different += sorted[i].id != stable[i].id;
+    EXPECT_EQ(different, 0u) << size << " items";
+  }
   for_each_thread_count([&](int) {
     std::vector<Item> sorted = items, buffer;
     ST::internal::sort_by_key<Parallel>(sorted, buffer);

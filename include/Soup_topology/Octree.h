@@ -1400,19 +1400,18 @@ private:
       else
         keys[i] = Key{code_of(approx[i]), std::uint32_t(i)};
     });
-    if constexpr(internal::runs_in_parallel<Tag>())
-      sort_keys_in_parallel<Tag>(keys);
-    else
-      sort_keys(keys);
+    sort_keys<Tag>(keys);
     return keys;
   }
 
-  // `sort_keys()` on TBB's threads, by the same steps: the keys are made in index order, so the
-  // stable radix sort (`internal::sort_by_digits()`) of the most significant bits orders them by
-  // (those bits, id); each run of keys that share those bits is then sorted by the block of keys
+  // sorts by (code, id), on TBB's threads when `Tag` asks for it, with the same result on any
+  // number of threads: the keys are made in index order, so the stable LSD radix sort
+  // (`internal::sort_by_digits()`, 11-bit digits) of the 33 most significant bits of the codes (10
+  // to 11 levels, enough to separate almost every point) orders them by (those bits, id); each of
+  // the few runs of keys that share those bits is then sorted by std::sort, by the block of keys
   // where it starts
   template <typename Tag>
-  void sort_keys_in_parallel(Keys& keys) const
+  void sort_keys(Keys& keys) const
   {
     const unsigned bits = 3 * depth_;
     const unsigned low = bits - std::min(bits, 33u);
@@ -1524,31 +1523,6 @@ private:
         if(nodes_[first + oct].end - nodes_[first + oct].begin > capacity_)
           pending.push_back(first + oct);
     }
-  }
-
-  // sorts by (code, id): a stable LSD radix sort on the 33 most significant bits of the codes
-  // (10 to 11 levels, enough to separate almost every point), then std::sort on the few runs
-  // that share those bits
-  void sort_keys(Keys& keys) const
-  {
-    const unsigned bits = 3 * depth_;
-    const unsigned radix_bits = std::min(bits, 33u);
-    const unsigned low = bits - radix_bits;
-    Keys tmp(keys.size());
-    for(unsigned s = low; s < bits; s += 11)
-    {
-      std::array<std::uint32_t, 2049> count{};
-      for(const Key& k : keys)
-        ++count[((k.code >> s) & 2047) + 1];
-      for(std::size_t j = 1; j < count.size(); ++j)
-        count[j] += count[j - 1];
-      for(const Key& k : keys)
-        tmp[count[(k.code >> s) & 2047]++] = k;
-      keys.swap(tmp);
-    }
-    if(low == 0)
-      return;
-    sort_runs(keys, 0, keys.size(), low);
   }
 
   // sorts by (code, id) each run of keys that share the bits above `low` in [first, last), which

@@ -239,33 +239,6 @@ std::size_t first_index_where(std::size_t n, const Predicate& bad)
   }
 }
 
-/// sorts `items` by their member `key` (an unsigned 64-bit integer), stably, with a least
-/// significant digit radix sort of 16-bit digits over the `bits` low bits of the keys (the
-/// others are zero); a digit that all keys share is skipped. `buffer` is scratch space.
-template <class Items>
-void radix_sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
-{
-  using Item = typename Items::value_type;
-  const std::size_t n = items.size();
-  if(n < 2) return;
-  if(n < 4096) {
-    // Fewer items than the digits' counters: a comparison sort, stable as well, the same order.
-    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
-    return;
-  }
-  buffer.resize(n);
-  std::vector<std::size_t> count(std::size_t(1) << 16);
-  for(unsigned shift = 0; shift < bits; shift += 16) {
-    std::fill(count.begin(), count.end(), 0);
-    for(const Item& item : items) ++count[(item.key >> shift) & 0xffff];
-    if(count[(items[0].key >> shift) & 0xffff] == n) continue; // one digit for all: already in order
-    std::size_t sum = 0;
-    for(std::size_t& c : count) { const std::size_t here = c; c = sum; sum += here; }
-    for(const Item& item : items) buffer[count[(item.key >> shift) & 0xffff]++] = item;
-    items.swap(buffer);
-  }
-}
-
 /// a stable sort of `items` by the digits of `digit_bits` bits of `key_of(item)` (an unsigned
 /// integer) that start at bits `low`, `low + digit_bits`, ... below `high`: one pass of counts and
 /// one scatter a digit, from the lowest, the passes whose digit is the same for all skipped. On
@@ -313,18 +286,21 @@ void sort_by_digits(Items& items, Items& buffer, unsigned low, unsigned high, un
   }
 }
 
-/// `radix_sort_by_key()`, on TBB's threads when `ConcurrencyTag` asks for it and the items are
-/// many (`sort_by_digits()` of 16 bits): the same result.
+/// sorts `items` by their member `key` (an unsigned 64-bit integer), stably: a comparison sort
+/// below 4096 items (fewer than the digits' counters), else `sort_by_digits()` of 16-bit digits
+/// over the `bits` low bits of the keys (the others are zero), on TBB's threads when
+/// `ConcurrencyTag` asks for it and the items are many. A stable sort has one result, whichever
+/// way it is computed. `buffer` is scratch space.
 template <class ConcurrencyTag, class Items>
 void sort_by_key(Items& items, Items& buffer, unsigned bits = 64)
 {
-  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
-    if(items.size() >= (std::size_t(1) << 20)) {
-      sort_by_digits<ConcurrencyTag>(items, buffer, 0, bits, 16, [](const auto& item) { return item.key; });
-      return;
-    }
+  using Item = typename Items::value_type;
+  if(items.size() < 2) return;
+  if(items.size() < 4096) {
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+    return;
   }
-  radix_sort_by_key(items, buffer, bits);
+  sort_by_digits<ConcurrencyTag>(items, buffer, 0, bits, 16, [](const Item& item) { return item.key; });
 }
 
 } // namespace internal

@@ -630,7 +630,7 @@ private:
         sort_by_key<CGAL::Parallel_if_available_tag>(items, buffer);
       } else {
         for(std::size_t c = 0; c < n; ++c) make_item(c);
-        radix_sort_by_key(items, buffer);
+        sort_by_key<CGAL::Sequential_tag>(items, buffer);
       }
       Uninitialized_vector<Item>().swap(buffer);
       for(std::size_t i = 0; i < n;) {
