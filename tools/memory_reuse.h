@@ -23,7 +23,9 @@
 // is a peak resident memory a few percent higher (freed blocks that are not reused exactly, and
 // huge pages touched in part); `Performance.md` has the measurements. That is why
 // `repair --max-memory` keeps glibc's default: its limit is modelled and measured with freed
-// memory given back. A user who sets `GLIBC_TUNABLES` keeps the policy given there.
+// memory given back. A user who sets `GLIBC_TUNABLES` keeps the policy given there. The package's
+// own huge-page blocks (`internal/uninitialized_vector.h`) are off in the tools
+// (`SOUP_TOPOLOGY_NO_HUGE_PAGES`, tools/CMakeLists.txt): this heap is advised already.
 
 #ifndef SOUP_TOPOLOGY_TOOLS_MEMORY_REUSE_H
 #define SOUP_TOPOLOGY_TOOLS_MEMORY_REUSE_H
