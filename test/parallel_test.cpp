@@ -690,8 +690,13 @@ TEST(ParallelUninitializedTables, LargeTablesInHugePages)
   EXPECT_EQ(address % (std::size_t(2) << 20), 0u);
   for(std::size_t i = 0; i < large; ++i) table[i] = i;
   // The mapping that holds the table is flagged "hg" in /proc/self/smaps (not under a sanitizer,
-  // whose allocator lays its memory out its own way).
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+  // whose allocator lays its memory out its own way; clang says so by __has_feature only).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define PARALLEL_TEST_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && !defined(PARALLEL_TEST_SANITIZED_ALLOCATOR)
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string modes;
   if(thp && std::getline(thp, modes) && modes.find("[never]") == std::string::npos) {
