@@ -1272,16 +1272,11 @@ TEST_F(HostileInput, MemoryReuseChangesNoOutput)
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   const std::size_t marked = soup_topology_tool::huge_page_heap_size();
   if(soup_topology_tool::memory_reuse_can_be_set && thp && marked > 0) {
-    std::ifstream smaps("/proc/self/smaps");
-    ASSERT_TRUE(smaps) << "no /proc/self/smaps";
-    std::size_t mapping = 0, largest_advised = 0;
-    for(std::string line; std::getline(smaps, line);) {
-      unsigned long long begin = 0, end = 0;
-      if(std::sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find(' '))
-        mapping = static_cast<std::size_t>(end - begin);
-      else if(line.rfind("VmFlags:", 0) == 0 && (line + " ").find(" hg ") != std::string::npos)
-        largest_advised = std::max(largest_advised, mapping);
-    }
+    const std::vector<soup_test::Memory_mapping> mappings = soup_test::memory_mappings();
+    ASSERT_FALSE(mappings.empty()) << "no /proc/self/smaps";
+    std::size_t largest_advised = 0;
+    for(const soup_test::Memory_mapping& m : mappings)
+      if(m.advised_for_huge_pages) largest_advised = std::max(largest_advised, std::size_t(m.end - m.begin));
     EXPECT_GE(largest_advised, marked - (std::size_t(4) << 20));
   }
 }

@@ -43,7 +43,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -700,17 +699,13 @@ TEST(ParallelUninitializedTables, LargeTablesInHugePages)
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string modes;
   if(thp && std::getline(thp, modes) && modes.find("[never]") == std::string::npos) {
-    std::ifstream smaps("/proc/self/smaps");
-    ASSERT_TRUE(smaps) << "no /proc/self/smaps";
-    bool holds = false, advised = false;
-    for(std::string line; std::getline(smaps, line);) {
-      unsigned long long begin = 0, end = 0;
-      if(std::sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find(' '))
-        holds = begin <= address && address < end;
-      else if(holds && line.rfind("VmFlags:", 0) == 0)
-        advised = (line + " ").find(" hg ") != std::string::npos;
-    }
-    EXPECT_TRUE(advised) << "the mapping of a 24 MiB table is not advised for huge pages";
+    const std::vector<soup_test::Memory_mapping> mappings = soup_test::memory_mappings();
+    ASSERT_FALSE(mappings.empty()) << "no /proc/self/smaps";
+    const auto holding = std::find_if(mappings.begin(), mappings.end(), [&](const soup_test::Memory_mapping& m) {
+      return m.begin <= address && address < m.end;
+    });
+    ASSERT_NE(holding, mappings.end()) << "no mapping holds the table";
+    EXPECT_TRUE(holding->advised_for_huge_pages) << "the mapping of a 24 MiB table is not advised for huge pages";
   }
 #endif
   EXPECT_EQ(table[large - 1], large - 1);

@@ -10,9 +10,11 @@
 #include <Soup_topology/IO/read_triangle_soup.h>
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -154,6 +156,30 @@ inline bool json_bool(const std::string& json, const std::string& key)
   const std::string pattern = "\"" + key + "\": ";
   const std::size_t at = json.find(pattern);
   return at != std::string::npos && json.compare(at + pattern.size(), 4, "true") == 0;
+}
+
+/// a mapping of this process's memory, as `/proc/self/smaps` lists it: its address range and
+/// whether its `VmFlags` hold `hg` (advised for transparent huge pages).
+struct Memory_mapping
+{
+  std::uintptr_t begin = 0, end = 0;
+  bool advised_for_huge_pages = false;
+};
+
+/// the mappings of this process (empty where `/proc/self/smaps` cannot be read).
+inline std::vector<Memory_mapping> memory_mappings()
+{
+  std::vector<Memory_mapping> mappings;
+  std::ifstream smaps("/proc/self/smaps");
+  for(std::string line; std::getline(smaps, line);) {
+    unsigned long long begin = 0, end = 0;
+    // a mapping's first line starts with its range; the lines of its fields have a colon first
+    if(std::sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find(' '))
+      mappings.push_back(Memory_mapping{static_cast<std::uintptr_t>(begin), static_cast<std::uintptr_t>(end), false});
+    else if(!mappings.empty() && line.rfind("VmFlags:", 0) == 0)
+      mappings.back().advised_for_huge_pages = (line + " ").find(" hg ") != std::string::npos;
+  }
+  return mappings;
 }
 
 } // namespace soup_test
