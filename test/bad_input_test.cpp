@@ -231,6 +231,36 @@ TEST(BadInputSTL, FourBillionFacetsFailAtOnce)
   EXPECT_TRUE(triangles.empty());
 }
 
+// The facets are decoded into the caller's vector, after what it held. A malformed file leaves
+// the vector as it was, also when facets before the error were read (ASCII), and a good file
+// appends its facets after the old ones, binary and ASCII alike.
+TEST(BadInputSTL, FacetsAppendAndAMalformedFileLeavesTheVectorAsItWas)
+{
+  const std::array<Point, 3> held{{Point(7, 7, 7), Point(8, 8, 8), Point(9, 9, 9)}};
+  const std::vector<std::array<Point, 3>> before{held, held};
+  const std::string three_then_garbage =
+    "solid g\n" + ascii_facet() + ascii_facet("1 0 0") + ascii_facet("0 0 1") + ascii_facet("0 1.2.3 0") + "endsolid g\n";
+  for(const std::string& bad : {three_then_garbage, binary_stl(3, 2)}) {
+    std::vector<std::array<Point, 3>> triangles = before;
+    EXPECT_THROW(ST::IO::read_STL_triangles(bad, triangles, "bad.stl"), ST::IO::Read_error);
+    EXPECT_EQ(triangles, before);
+  }
+  for(const std::string& good : {"solid g\n" + ascii_facet() + ascii_facet("1 0 0") + "endsolid g\n", binary_stl(2, 2)}) {
+    std::vector<std::array<Point, 3>> alone, appended = before;
+    const ST::IO::STL_read_result a = ST::IO::read_STL_triangles(good, alone, "good.stl");
+    const ST::IO::STL_read_result b = ST::IO::read_STL_triangles(good, appended, "good.stl");
+    ASSERT_EQ(alone.size(), 2u);
+    EXPECT_EQ(a.triangles, 2u);
+    EXPECT_EQ(b.triangles, 2u);
+    EXPECT_EQ(a.binary, b.binary);
+    ASSERT_EQ(appended.size(), 4u);
+    EXPECT_EQ(appended[0], held);
+    EXPECT_EQ(appended[1], held);
+    EXPECT_EQ(appended[2], alone[0]);
+    EXPECT_EQ(appended[3], alone[1]);
+  }
+}
+
 TEST(BadInputOFF, EmptyFileAndMissingHeader)
 {
   EXPECT_CONTAINS(read_error<ST::IO::Read_error>("e.off", ""), "e.off:1: empty file, expected the OFF header");

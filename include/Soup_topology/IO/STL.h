@@ -185,6 +185,42 @@ Point binary_STL_corner(const char* data, std::size_t i)
   return Point(double(c[0]), double(c[1]), double(c[2]));
 }
 
+/// appends the facets of the ASCII solids in `[b, e)` (from the first `solid`) to `triangles`;
+/// throws `Read_error` naming the line on malformed input, with the facets read so far appended.
+template <class Point>
+void read_ascii_STL_solids(const char* b, const char* e, const std::string& name,
+                           std::vector<std::array<Point, 3>>& triangles)
+{
+  using S = STL_ascii_scanner;
+  S in(b, e, name);
+  std::string_view t;
+  bool more = in.next(t); // "solid", checked by looks_like_ascii_stl
+  while(more) {
+    if(!S::equal_nocase(t, "solid")) in.fail("expected 'solid' after 'endsolid', found " + S::quoted(t));
+    in.skip_rest_of_line(); // the name of the solid, which may be a keyword
+    for(;;) {
+      if(!in.next(t)) in.fail("unexpected end of file, expected 'endsolid'");
+      if(S::equal_nocase(t, "endsolid")) break;
+      if(!S::equal_nocase(t, "facet")) in.fail("expected 'facet' or 'endsolid', found " + S::quoted(t));
+      in.expect("normal");
+      in.number(); in.number(); in.number();
+      in.expect("outer");
+      in.expect("loop");
+      std::array<Point, 3> tri;
+      for(int k = 0; k < 3; ++k) {
+        in.expect("vertex");
+        const double x = in.number(), y = in.number(), z = in.number();
+        tri[static_cast<std::size_t>(k)] = Point(x, y, z);
+      }
+      in.expect("endloop");
+      in.expect("endfacet");
+      triangles.push_back(tri);
+    }
+    in.skip_rest_of_line(); // the name after endsolid
+    more = in.next(t);
+  }
+}
+
 /// the check of the first bytes of an STL input of unknown size (see `read_bounded()`): a
 /// binary header announces the size, beyond which the input is refused without reading on.
 struct STL_prefix_check
@@ -239,49 +275,30 @@ STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vect
     std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
   using Decode_tag = std::conditional_t<parallel_decode, ConcurrencyTag, CGAL::Sequential_tag>;
   STL_read_result result;
-  std::vector<std::array<Point, 3>> read;
+  // The facets are decoded straight into `triangles`, after what it held: no temporary copy of
+  // the soup (at 72 bytes a facet with `double` points, that copy was the larger part of the
+  // parse). On a malformed file the facets appended so far are erased before the error leaves.
+  const std::size_t held = triangles.size();
   const char* const end = data + size;
   // A UTF-8 byte order mark before "solid" is skipped (a binary header may start with anything).
   const std::size_t bom = Soup_topology::internal::utf8_bom_size(data, end);
   if(internal::looks_like_ascii_stl(data + bom, end)) {
-    using S = internal::STL_ascii_scanner;
-    S in(data + bom, end, name);
-    std::string_view t;
-    bool more = in.next(t); // "solid", checked by looks_like_ascii_stl
-    while(more) {
-      if(!S::equal_nocase(t, "solid")) in.fail("expected 'solid' after 'endsolid', found " + S::quoted(t));
-      in.skip_rest_of_line(); // the name of the solid, which may be a keyword
-      for(;;) {
-        if(!in.next(t)) in.fail("unexpected end of file, expected 'endsolid'");
-        if(S::equal_nocase(t, "endsolid")) break;
-        if(!S::equal_nocase(t, "facet")) in.fail("expected 'facet' or 'endsolid', found " + S::quoted(t));
-        in.expect("normal");
-        in.number(); in.number(); in.number();
-        in.expect("outer");
-        in.expect("loop");
-        std::array<Point, 3> tri;
-        for(int k = 0; k < 3; ++k) {
-          in.expect("vertex");
-          const double x = in.number(), y = in.number(), z = in.number();
-          tri[static_cast<std::size_t>(k)] = Point(x, y, z);
-        }
-        in.expect("endloop");
-        in.expect("endfacet");
-        read.push_back(tri);
-      }
-      in.skip_rest_of_line(); // the name after endsolid
-      more = in.next(t);
+    try {
+      internal::read_ascii_STL_solids(data + bom, end, name, triangles);
+    } catch(...) {
+      triangles.erase(triangles.begin() + static_cast<std::ptrdiff_t>(held), triangles.end());
+      throw;
     }
   } else {
     result.binary = true;
-    const std::uint32_t n = internal::binary_STL_facet_count(data, size, name);
-    read.resize(n);
+    const std::uint32_t n = internal::binary_STL_facet_count(data, size, name); // throws before any change
+    triangles.resize(held + n);
+    std::array<Point, 3>* const read = triangles.data() + held;
     Soup_topology::internal::for_each_index<Decode_tag>(n, [&](std::size_t f) {
       for(std::size_t k = 0; k < 3; ++k) read[f][k] = internal::binary_STL_corner<Point>(data, 3 * f + k);
     });
   }
-  result.triangles = read.size();
-  triangles.insert(triangles.end(), read.begin(), read.end());
+  result.triangles = triangles.size() - held;
   return result;
 }
 
