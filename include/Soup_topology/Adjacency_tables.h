@@ -651,10 +651,13 @@ private:
     for_each_edge([this](size_type, size_type, const Edge* first, const Edge* last) { set_group(first, last); });
   }
 
-  // build() on TBB's threads, with the same result. The vertex rows are counted and filled with
-  // atomic cursors, then each row is sorted (its triangles are distinct: one order only). The edge
-  // entries of the edges {a, b}, a < b, are written in the pass of a, each by one pass only; the
-  // passes of the vertices run in parallel, each gathering the edges of a by their other end.
+  // build() on TBB's threads, with the same result. The vertex rows are counted with atomic
+  // cursors, each corner keeping the count it drew (its place in its vertex's row, in the order
+  // the threads came), then filled at those places without atomics, then each row is sorted (its
+  // triangles are distinct: one order only). The places are kept in `neighbors_`, which has one
+  // entry per corner and is written with the neighbours only afterwards: no memory is added. The
+  // edge entries of the edges {a, b}, a < b, are written in the pass of a, each by one pass only;
+  // the passes of the vertices run in parallel, each gathering the edges of a by their other end.
   template <class ConcurrencyTag>
   void build_in_parallel(std::size_t number_of_points)
   {
@@ -663,11 +666,13 @@ private:
     vertex_begin_.resize(nv);
     vertex_size_.resize(nv);
     decltype(vertex_capacity_)().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
+    neighbors_.resize(3 * m); // the places of the corners in their rows first (written whole below)
     {
       const std::unique_ptr<std::atomic<size_type>[]> cursor(new std::atomic<size_type>[nv]);
       internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
       internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
-        for(size_type v : triangles_[t]) cursor[v].fetch_add(1, std::memory_order_relaxed);
+        for(std::size_t i = 0; i < 3; ++i)
+          neighbors_[3 * t + i] = cursor[triangles_[t][i]].fetch_add(1, std::memory_order_relaxed);
       });
       // The exclusive prefix sums of the degrees by blocks: the blocks' totals, their prefix sums
       // (one per block, in order), then the offsets of each block from its own start.
@@ -685,21 +690,19 @@ private:
           const size_type d = cursor[v].load(std::memory_order_relaxed);
           vertex_begin_[v] = offset;
           vertex_size_[v] = d;
-          cursor[v].store(0, std::memory_order_relaxed);
           offset += d;
         }
       });
-      ids_.resize(block_offset.back()); // every entry written by the pass below
-      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
-        for(size_type v : triangles_[t])
-          ids_[vertex_begin_[v] + cursor[v].fetch_add(1, std::memory_order_relaxed)] = static_cast<size_type>(t);
-      });
     }
+    ids_.resize(3 * m); // one entry per corner, every one written below
+    internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
+      for(std::size_t i = 0; i < 3; ++i)
+        ids_[vertex_begin_[triangles_[t][i]] + neighbors_[3 * t + i]] = static_cast<size_type>(t);
+    });
     internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) {
       size_type* b = ids_.data() + vertex_begin_[v];
       std::sort(b, b + vertex_size_[v]);
     });
-    neighbors_.resize(3 * m);
     internal::for_each_index<ConcurrencyTag>(3 * m, [&](std::size_t k) { neighbors_[k] = border_edge; });
     struct End { size_type other; Edge edge; };
     internal::for_each_block<ConcurrencyTag>(nv, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
