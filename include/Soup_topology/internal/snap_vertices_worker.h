@@ -126,6 +126,17 @@ private:
   Given held_;
 };
 
+/// the most entries of one buffer of the rows of the weld's tolerance graph, so that a row's
+/// start fits in 4 bytes (rows go on in a new buffer beyond it). A variable only so that a test
+/// can make it small and check that rows spread over many buffers give the same weld.
+inline std::size_t row_buffer_limit = std::numeric_limits<std::uint32_t>::max();
+
+/// the room reserved for the entries of a buffer of rows when it is started (16 MiB): the rows
+/// fill it and go on in a new buffer, instead of growing one buffer by doubling it (which copies
+/// the rows and holds the old and the new buffer at once, the peak of the weld). The room of the
+/// last buffer that no row reaches is never written, so its pages are never faulted in.
+constexpr std::size_t row_buffer_room = std::size_t(1) << 22;
+
 /// Welds the vertices of an indexed soup within a tolerance, as documented at `snap_vertices()`.
 /// `run()` names the steps; each step reads and fills the members below, in this order: short
 /// edges, candidates, tolerance graph (components and rows of neighbours), refusals of
@@ -147,11 +158,6 @@ private:
 /// radius within which the octree lists the candidates before the pair rule filters them. Without
 /// a map `tolerances_` is null and each of these places takes the one-tolerance branch it took
 /// before (one pointer test per pair, outside the predicates).
-/// the most entries of one buffer of the rows of the weld's tolerance graph, so that a row's
-/// start fits in 4 bytes (rows go on in a new buffer beyond it). A variable only so that a test
-/// can make it small and check that rows spread over many buffers give the same weld.
-inline std::size_t row_buffer_limit = std::numeric_limits<std::uint32_t>::max();
-
 template <class Kernel, class Visitor>
 class Snap_vertices_worker
 {
@@ -159,6 +165,10 @@ class Snap_vertices_worker
   using FT = typename Kernel::FT;
   using size_type = Adjacency_tables::size_type;
   using Pair = std::pair<std::uint32_t, std::uint32_t>;
+  // the octree of the candidates: candidate `c` is the vertex `candidates_[c]`, its point read
+  // from the soup's points through that index
+  using Candidate_point_map = typename CGAL::Pointer_property_map<Point>::const_type;
+  using Candidate_tree = Octree<Kernel, Candidate_point_map>;
 
   static constexpr size_type none = static_cast<size_type>(-1);
   static constexpr std::uint32_t not_candidate = static_cast<std::uint32_t>(-1);
@@ -208,11 +218,13 @@ public:
 
 private:
   const Point& point(size_type v) const { return points_[v]; }
-  // The point of candidate `c` once the tolerance graph's octree is built (its copy, unless the
-  // candidates' own copy is kept for the grid of a dense cluster).
+  // The point of candidate `c`: the soup's until the tolerance graph's octree is built, then the
+  // tree's copy (in the order of the tree, near the points of its neighbours), or the copy of the
+  // candidates' points kept for the grid of a dense cluster.
   const Point& candidate_point(std::uint32_t c) const
   {
-    return candidate_points_.empty() ? tree_->point(c) : candidate_points_[c];
+    if(!candidate_points_.empty()) return candidate_points_[c];
+    return tree_ ? tree_->point(c) : point(candidates_[c]);
   }
   size_type final_vertex(size_type v) const { return target_[v] == none ? v : target_[v]; }
 
@@ -318,16 +330,8 @@ private:
   void build_tolerance_graph()
   {
     const std::size_t n = candidates_.size();
-    if(parallel_ && std::is_same<FT, double>::value) {
-      // (a default point of `double` coordinates is not written: the blocks fault in the pages)
-      candidate_points_.resize(n);
-      for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for(std::size_t c = begin; c != end; ++c) candidate_points_[c] = point(candidates_[c]);
-      });
-    } else {
-      candidate_points_.reserve(n);
-      for(size_type v : candidates_) candidate_points_.push_back(point(v));
-    }
+    // The steps below read the candidates' points from the soup (the candidates are in increasing
+    // order of their vertices): no copy of them is made before the octree's own.
     // The order of the clusters, sorted here: its scratch is freed before the octree and the
     // rows are built (the peak memory of the weld).
     sort_candidates_lexicographically();
@@ -335,20 +339,29 @@ private:
     // joins whole cells and two cells by their nearest pair, which is right for one tolerance
     // only: with per-vertex tolerances it is not used (every pair is listed by the self-join and
     // decided by the pair rule).
+    const auto candidate_in_soup = [this](std::size_t c) -> const Point& { return point(candidates_[c]); };
     dense_ = tolerances_ == nullptr &&
-             (parallel_ ? largest_tolerance_cell<CGAL::Parallel_if_available_tag>(candidate_points_, eps_)
-                        : largest_tolerance_cell(candidate_points_, eps_)) > dense_cell_size;
-    tree_ = parallel_ ? std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_,
-                                                         CGAL::Parallel_if_available_tag())
-                      : std::make_unique<Octree<Kernel>>(candidate_points_, CGAL::Identity_property_map<Point>(), kernel_);
-    // The tree holds the same points: the copy goes, unless the grid of a dense cluster reads it.
-    if(!dense_) std::vector<Point>().swap(candidate_points_);
+             (parallel_ ? largest_tolerance_cell<CGAL::Parallel_if_available_tag>(n, candidate_in_soup, eps_)
+                        : largest_tolerance_cell(n, candidate_in_soup, eps_)) > dense_cell_size;
+    const Candidate_point_map in_soup = CGAL::make_property_map(points_.data());
+    tree_ = parallel_ ? std::make_unique<Candidate_tree>(candidates_, in_soup, kernel_, CGAL::Parallel_if_available_tag())
+                      : std::make_unique<Candidate_tree>(candidates_, in_soup, kernel_, CGAL::Sequential_tag());
+    // The grid of a dense cluster reads the candidates' points from a vector of their own.
+    if(dense_) {
+      candidate_points_.reserve(n);
+      for(size_type v : candidates_) candidate_points_.push_back(point(v));
+    }
     find_same_triangle_pairs();
     components_.reset(n);
     if(dense_)
       Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
-    else
+    else {
       join_neighborhoods();
+      // Without a dense cluster the clusters read the rows and the points only: the octree (a
+      // copy of the candidates' points, its indices and nodes) goes before they allocate, and
+      // the points are read from the soup.
+      tree_.reset();
+    }
   }
 
   // `for_each_block()` of default-size blocks: on TBB's threads when the weld runs in parallel
@@ -389,7 +402,7 @@ private:
         }
     });
     concatenate_in_block_order(found, same_triangle_pairs_);
-    const Octree<Kernel>& tree = *tree_;
+    const Candidate_tree& tree = *tree_;
     std::sort(same_triangle_pairs_.begin(), same_triangle_pairs_.end(), [&](const Pair& x, const Pair& y) {
       const std::uint64_t cx = tree.morton_code(x.first), cy = tree.morton_code(y.first);
       return cx < cy || (cx == cy && x < y);
@@ -410,7 +423,7 @@ private:
     const std::size_t n = candidates_.size();
     row_start_.resize(n);
     row_size_.resize(n);
-    rows_.assign(1, {});
+    rows_.clear();
     row_buffer_.clear();
     if constexpr(std::is_same<FT, double>::value) {
       if(parallel_) {
@@ -418,7 +431,7 @@ private:
         return;
       }
     }
-    std::vector<std::uint32_t>* row = &rows_[0];
+    std::vector<std::uint32_t>* row = start_row_buffer(0);
     std::vector<char> mate(points_.size(), 0);
     auto mark_mates = [&](std::size_t c, char value) {
       for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
@@ -429,7 +442,7 @@ private:
       if(!row_fits(*row, found.size())) {
         // The first full buffer: the rows so far are in buffer 0, and each row says where it is.
         if(row_buffer_.empty()) row_buffer_.assign(n, 0);
-        row = &rows_.emplace_back();
+        row = start_row_buffer(found.size());
       }
       if(!row_buffer_.empty()) row_buffer_[c] = static_cast<std::uint32_t>(rows_.size() - 1);
       row_start_[c] = static_cast<std::uint32_t>(row->size());
@@ -445,11 +458,20 @@ private:
     });
   }
 
-  // `true` if a row of up to `length` neighbours can start in `row`: its start and its end stay
-  // within `row_buffer_limit`, so that both fit in 4 bytes (a new buffer is started otherwise).
+  // `true` if a row of up to `length` neighbours can start in `row`: its end stays within the room
+  // reserved (no copy of the buffer) and within `row_buffer_limit`, so that its start and its end
+  // fit in 4 bytes (a new buffer is started otherwise).
   static bool row_fits(const std::vector<std::uint32_t>& row, std::size_t length)
   {
-    return row.size() + length <= row_buffer_limit;
+    return row.size() + length <= std::min(row.capacity(), row_buffer_limit);
+  }
+
+  // A new buffer of rows at the end of `rows_`, its room reserved for a row of `length` at least.
+  std::vector<std::uint32_t>* start_row_buffer(std::size_t length)
+  {
+    std::vector<std::uint32_t>& row = rows_.emplace_back();
+    row.reserve(std::min(std::max(row_buffer_room, length), std::max(row_buffer_limit, length)));
+    return &row;
   }
 
   // `join_neighborhoods()` on TBB's threads. The vertices that share a triangle with a candidate
@@ -477,7 +499,7 @@ private:
           const std::lock_guard<std::mutex> hold(buffers_mutex);
           mine.call = call;
           mine.buffer = static_cast<std::uint32_t>(rows_.size());
-          mine.row = &rows_.emplace_back();
+          mine.row = start_row_buffer(found.size());
         }
         std::vector<std::uint32_t>* const row = mine.row;
         if(!collapse_) {
@@ -1086,7 +1108,7 @@ private:
   // Candidates and the tolerance graph over them (local ids).
   Uninitialized_vector<size_type> candidates_;
   std::vector<Point> candidate_points_;
-  std::unique_ptr<Octree<Kernel>> tree_;
+  std::unique_ptr<Candidate_tree> tree_; // over the candidates (local ids), their points read from the soup
   std::vector<Pair> same_triangle_pairs_;
   Union_find components_;                               // of the tolerance graph, until they become `root_`
   bool dense_ = false;

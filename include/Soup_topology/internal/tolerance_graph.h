@@ -95,11 +95,12 @@ std::array<double, 3> approximate_coordinates(const Point& p)
 /// tolerance `eps` (0 when that grid is not usable): its `largest_cell()`, found from the cell
 /// indices alone, without the cells; computed and sorted on TBB's threads when `ConcurrencyTag`
 /// asks for it (the same count).
-template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class FT>
-std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& eps)
+///
+/// The points are `point_of(0)`, ..., `point_of(n - 1)` (e.g. read from a soup through indices).
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointOf, class FT>
+std::size_t largest_tolerance_cell(std::size_t n, const PointOf& point_of, const FT& eps)
 {
-  const std::size_t n = points.size();
-  const Tolerance_grid_frame frame(n, [&](std::size_t i) { return approximate_coordinates(points[i]); },
+  const Tolerance_grid_frame frame(n, [&](std::size_t i) { return approximate_coordinates(point_of(i)); },
                                    CGAL::to_double(eps));
   if(!frame.usable) return 0;
   std::size_t largest = 1;
@@ -109,7 +110,7 @@ std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& e
     struct Item { std::uint64_t key; };
     Uninitialized_vector<Item> keys(n), buffer; // written whole on TBB's threads before they are read
     for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
-      const std::array<std::int64_t, 3> k = frame.key(approximate_coordinates(points[i]));
+      const std::array<std::int64_t, 3> k = frame.key(approximate_coordinates(point_of(i)));
       keys[i].key = (std::uint64_t(k[0]) << 42) | (std::uint64_t(k[1]) << 21) | std::uint64_t(k[2]);
     });
     sort_by_key<ConcurrencyTag>(keys, buffer, 63);
@@ -122,7 +123,7 @@ std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& e
     return largest;
   }
   std::vector<std::array<std::int64_t, 3>> keys(n);
-  for(std::size_t i = 0; i < n; ++i) keys[i] = frame.key(approximate_coordinates(points[i]));
+  for(std::size_t i = 0; i < n; ++i) keys[i] = frame.key(approximate_coordinates(point_of(i)));
   std::sort(keys.begin(), keys.end());
   for(std::size_t i = 0; i < n;) {
     std::size_t j = i + 1;
@@ -131,6 +132,14 @@ std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& e
     i = j;
   }
   return largest;
+}
+
+/// the same for the points of a vector.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point, class FT>
+std::size_t largest_tolerance_cell(const std::vector<Point>& points, const FT& eps)
+{
+  return largest_tolerance_cell<ConcurrencyTag>(points.size(), [&points](std::size_t i) -> const Point& { return points[i]; },
+                                                eps);
 }
 
 /// A grid over points whose cells have a diagonal just below the tolerance `eps`, so that every
