@@ -1753,11 +1753,13 @@ private:
   std::uint32_t top_ = 0; // the largest address, 2^n - 1
   std::vector<double> cell_size_;
 
-  std::vector<Point_3> points_;                  // sorted by (Morton code, index)
+  // (the large arrays below are `Uninitialized_vector`s: their blocks come in huge pages, and a
+  // copy of the points is written whole by the build)
+  internal::Uninitialized_vector<Point_3> points_; // sorted by (Morton code, index)
   std::vector<std::array<double, 3>> approx_;    // their coordinates in double (if FT is not)
   internal::Uninitialized_vector<std::uint32_t> ids_;       // their indices in the input range
   internal::Uninitialized_vector<std::uint32_t> positions_; // input index -> sorted position
-  std::vector<Node> nodes_;
+  internal::Uninitialized_vector<Node> nodes_;
 };
 
 } // namespace Soup_topology

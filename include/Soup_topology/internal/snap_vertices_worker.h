@@ -165,6 +165,8 @@ class Snap_vertices_worker
   using FT = typename Kernel::FT;
   using size_type = Adjacency_tables::size_type;
   using Pair = std::pair<std::uint32_t, std::uint32_t>;
+  // a buffer of rows of the tolerance graph (its room reserved in huge pages, see `row_buffer_room`)
+  using Row_buffer = Uninitialized_vector<std::uint32_t>;
   // the octree of the candidates: candidate `c` is the vertex `candidates_[c]`, its point read
   // from the soup's points through that index
   using Candidate_point_map = typename CGAL::Pointer_property_map<Point>::const_type;
@@ -431,7 +433,7 @@ private:
         return;
       }
     }
-    std::vector<std::uint32_t>* row = start_row_buffer(0);
+    Row_buffer* row = start_row_buffer(0);
     std::vector<char> mate(points_.size(), 0);
     auto mark_mates = [&](std::size_t c, char value) {
       for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
@@ -461,15 +463,15 @@ private:
   // `true` if a row of up to `length` neighbours can start in `row`: its end stays within the room
   // reserved (no copy of the buffer) and within `row_buffer_limit`, so that its start and its end
   // fit in 4 bytes (a new buffer is started otherwise).
-  static bool row_fits(const std::vector<std::uint32_t>& row, std::size_t length)
+  static bool row_fits(const Row_buffer& row, std::size_t length)
   {
     return row.size() + length <= std::min(row.capacity(), row_buffer_limit);
   }
 
   // A new buffer of rows at the end of `rows_`, its room reserved for a row of `length` at least.
-  std::vector<std::uint32_t>* start_row_buffer(std::size_t length)
+  Row_buffer* start_row_buffer(std::size_t length)
   {
-    std::vector<std::uint32_t>& row = rows_.emplace_back();
+    Row_buffer& row = rows_.emplace_back();
     row.reserve(std::min(std::max(row_buffer_room, length), std::max(row_buffer_limit, length)));
     return &row;
   }
@@ -489,7 +491,7 @@ private:
     {
       std::uint64_t call = 0;
       std::uint32_t buffer = 0;
-      std::vector<std::uint32_t>* row = nullptr; // rows_[buffer] (a deque: it stays where it is)
+      Row_buffer* row = nullptr; // rows_[buffer] (a deque: it stays where it is)
       std::vector<size_type> mates;
     };
     tree_->template for_each_neighborhood_concurrently<CGAL::Parallel_if_available_tag>(
@@ -501,7 +503,7 @@ private:
           mine.buffer = static_cast<std::uint32_t>(rows_.size());
           mine.row = start_row_buffer(found.size());
         }
-        std::vector<std::uint32_t>* const row = mine.row;
+        Row_buffer* const row = mine.row;
         if(!collapse_) {
           mine.mates.clear();
           for(size_type t : tables_.triangles_around_vertex(candidates_[c]))
@@ -557,7 +559,7 @@ private:
     // The components are read as roots from here on: their storage becomes `root_`.
     root_ = components_.take_roots();
     for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c]];
-    std::vector<std::uint32_t> visits(n), next_visit(n);
+    Uninitialized_vector<std::uint32_t> visits(n), next_visit(n); // (written before they are read)
     rank_.resize(n);
     std::uint32_t number_of_visits = 0;
     for(std::uint32_t c = 0; c < n; ++c)
@@ -568,7 +570,7 @@ private:
       if(component_size_[root_[c]] >= 2) visits[next_visit[root_[c]]++] = c;
     }
     visits.resize(number_of_visits);
-    std::vector<std::uint32_t>().swap(next_visit);
+    Uninitialized_vector<std::uint32_t>().swap(next_visit);
     // Blocks of whole components, of at least `visits_per_block` visits each (the last one may
     // be smaller): the visits of a component are consecutive.
     constexpr std::size_t visits_per_block = 4096;
@@ -609,7 +611,7 @@ private:
                      [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
     Uninitialized_vector<std::uint32_t>().swap(candidate_of_);
-    std::vector<std::uint32_t>().swap(rank_);
+    Uninitialized_vector<std::uint32_t>().swap(rank_);
     release_tolerance_graph();
   }
 
@@ -620,7 +622,7 @@ private:
   {
     tree_.reset();
     std::vector<Point>().swap(candidate_points_);
-    std::deque<std::vector<std::uint32_t>>().swap(rows_);
+    std::deque<Row_buffer>().swap(rows_);
     Uninitialized_vector<std::uint32_t>().swap(row_buffer_);
     Uninitialized_vector<std::uint32_t>().swap(row_start_);
     Uninitialized_vector<std::uint32_t>().swap(row_size_);
@@ -700,7 +702,7 @@ private:
         if(d != rep && !assigned_[d] && (collapse_ || mate_of_[candidates_[d]] != rep))
           members.push_back(static_cast<std::uint32_t>(d));
     } else {
-      const std::vector<std::uint32_t>& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]];
+      const Row_buffer& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]];
       for(std::size_t k = row_start_[rep], end = k + row_size_[rep]; k < end; ++k)
         if(!assigned_[row[k]]) members.push_back(row[k]);
     }
@@ -1113,7 +1115,7 @@ private:
   Union_find components_;                               // of the tolerance graph, until they become `root_`
   bool dense_ = false;
   bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
-  std::deque<std::vector<std::uint32_t>> rows_;         // the rows of neighbours, in one buffer per thread
+  std::deque<Row_buffer> rows_;         // the rows of neighbours, in one buffer per thread
   // (the arrays by candidate below are `Uninitialized_vector`s: the search writes every candidate's
   // entry, once each, on the thread that finds its neighbourhood)
   Uninitialized_vector<std::uint32_t> row_buffer_;      // by candidate: the buffer of its row (empty: the first)
@@ -1122,13 +1124,13 @@ private:
   Uninitialized_vector<std::uint32_t> row_size_;        // by candidate: the length of its row (fewer than the candidates)
   // Clusters.
   Uninitialized_vector<std::uint32_t> lex_order_;       // candidates in lexicographic order (written whole)
-  std::vector<size_type> target_;                       // representative of a merged vertex, or none
+  Uninitialized_vector<size_type> target_;              // representative of a merged vertex, or none
   Uninitialized_vector<std::uint32_t> candidate_of_;    // by vertex: its candidate, or not_candidate
   std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
-  std::vector<std::uint32_t> rank_;                     // by candidate: its position in `lex_order_`
-  std::vector<std::uint32_t> mate_of_;                  // vertices sharing a triangle with the representative
-  std::vector<char> assigned_;                          // by candidate (one byte each: written by blocks in parallel)
-  std::vector<std::uint32_t> component_size_, largest_cluster_;
+  Uninitialized_vector<std::uint32_t> rank_;            // by candidate: its position in `lex_order_`
+  Uninitialized_vector<std::uint32_t> mate_of_;         // vertices sharing a triangle with the representative
+  Uninitialized_vector<char> assigned_;                 // by candidate (one byte each: written by blocks in parallel)
+  Uninitialized_vector<std::uint32_t> component_size_, largest_cluster_;
   struct Deferred_refusal
   {
     std::uint32_t rank;                                 // of the representative in `lex_order_`
