@@ -890,16 +890,16 @@ private:
   // `order[bucket[k]], ..., order[bucket[k + 1] - 1]`, in the order of the range.
   struct Segments_by_first_end
   {
-    std::vector<std::uint32_t> second_end; // by segment, the sorted position of its second end
-    std::vector<std::size_t> bucket;
-    std::vector<std::uint32_t> order;
+    internal::Uninitialized_vector<std::uint32_t> second_end; // by segment, the sorted position of its second end
+    internal::Uninitialized_vector<std::size_t> bucket;
+    internal::Uninitialized_vector<std::uint32_t> order;
   };
   template <typename SegmentRange>
   Segments_by_first_end segments_by_first_end(const SegmentRange& segments) const
   {
     const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(segments), std::end(segments)));
     Segments_by_first_end out;
-    std::vector<std::uint32_t> first_end(m);
+    internal::Uninitialized_vector<std::uint32_t> first_end(m); // (these arrays are written whole before they are read)
     out.second_end.resize(m);
     out.bucket.assign(size() + 1, 0);
     for(std::size_t s = 0; s < m; ++s)
@@ -914,7 +914,7 @@ private:
     for(std::size_t k = 1; k < out.bucket.size(); ++k)
       out.bucket[k] += out.bucket[k - 1];
     out.order.resize(m);
-    std::vector<std::size_t> next(out.bucket.begin(), out.bucket.end() - 1);
+    internal::Uninitialized_vector<std::size_t> next(out.bucket.begin(), out.bucket.end() - 1);
     for(std::size_t s = 0; s < m; ++s)
       out.order[next[first_end[s]]++] = static_cast<std::uint32_t>(s);
     return out;

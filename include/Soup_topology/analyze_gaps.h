@@ -168,7 +168,7 @@ void sort_sizes(std::vector<double>& sizes)
     std::sort(sizes.begin(), sizes.end());
     return;
   }
-  std::vector<std::uint64_t> keys(sizes.size()), buffer(sizes.size());
+  Uninitialized_vector<std::uint64_t> keys(sizes.size()), buffer(sizes.size()); // written whole before they are read
   for_each_index<ConcurrencyTag>(sizes.size(), [&](std::size_t i) { std::memcpy(&keys[i], &sizes[i], sizeof(double)); });
   for(unsigned shift = 0; shift < 64; shift += 16) {
     std::vector<std::size_t> count((std::size_t(1) << 16) + 1, 0);

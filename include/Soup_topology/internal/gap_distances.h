@@ -176,7 +176,7 @@ public:
           count(near.size());
           for(std::size_t j : near) offer_vertex(k, j);
         }, Neighborhood_order::TREE);
-      std::vector<double> vertex_distance(nearest_.size());
+      Uninitialized_vector<double> vertex_distance(nearest_.size()); // written whole below
       for(std::size_t k = 0; k < nearest_.size(); ++k) vertex_distance[k] = nearest_[k].distance;
       std::array<std::mutex, 256> locks;
       tree_->template for_each_segment_neighborhood_concurrently<ConcurrencyTag>(
@@ -257,8 +257,11 @@ private:
   // The border edges in the order of their triangles, and their ends as indices into `border`.
   void list_border_edges()
   {
-    std::vector<std::size_t> border_index(tables_.number_of_vertices(), 0);
+    // (read only at the ends of border edges, which are border vertices: all written)
+    Uninitialized_vector<std::size_t> border_index(tables_.number_of_vertices());
     for(std::size_t k = 0; k < border_.size(); ++k) border_index[border_[k]] = k;
+    border_edges_.reserve(tables_.number_of_border_edges());
+    border_edge_ends_.reserve(tables_.number_of_border_edges());
     for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
       const auto tt = static_cast<Adjacency_tables::size_type>(t);
       const Adjacency_tables::Triangle& tr = tables_.triangle(tt);
@@ -334,8 +337,9 @@ private:
   typename Geom_traits::Compute_squared_distance_3 squared_distance_;
   std::optional<Tree> tree_;
   std::vector<Nearest_border_element> nearest_;
-  std::vector<Adjacency_tables::Edge> border_edges_;              // in the order of their triangles
-  std::vector<std::array<std::size_t, 2>> border_edge_ends_;      // their ends, indices into `border`
+  // (`Uninitialized_vector`s: their large blocks come in huge pages)
+  Uninitialized_vector<Adjacency_tables::Edge> border_edges_;         // in the order of their triangles
+  Uninitialized_vector<std::array<std::size_t, 2>> border_edge_ends_; // their ends, indices into `border`
   std::size_t examined_ = 0;
 };
 
