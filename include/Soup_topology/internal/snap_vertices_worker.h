@@ -468,11 +468,14 @@ private:
     return row.size() + length <= std::min(row.capacity(), row_buffer_limit);
   }
 
-  // A new buffer of rows at the end of `rows_`, its room reserved for a row of `length` at least.
+  // A new buffer of rows at the end of `rows_`, its room reserved for a row of `length` at least:
+  // `row_buffer_room`, or 4 entries a candidate when that is less (a small weld, one of many in
+  // rounds or tiles, does not reserve, nor touch a huge page of, a room it cannot fill).
   Row_buffer* start_row_buffer(std::size_t length)
   {
+    const std::size_t room = std::min(row_buffer_room, 4 * candidates_.size());
     Row_buffer& row = rows_.emplace_back();
-    row.reserve(std::min(std::max(row_buffer_room, length), std::max(row_buffer_limit, length)));
+    row.reserve(std::min(std::max(room, length), std::max(row_buffer_limit, length)));
     return &row;
   }
 
