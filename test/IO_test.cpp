@@ -1137,6 +1137,136 @@ TEST(ReadTriangleSoup, Issue13BinarySTLWeldedWhileReadEqualsIndexTriangles)
   }
 }
 
+// Issue 13: read_STL_file() reads a file as read_STL_triangles() reads its bytes held whole: the
+// same triangles, result and messages, and the caller's triangles unchanged on a refusal.
+struct STL_file_outcome
+{
+  std::vector<std::array<Point, 3>> triangles;
+  bool binary = false;
+  std::size_t read = 0;
+  std::string error;
+};
+
+template <class ConcurrencyTag = CGAL::Sequential_tag>
+STL_file_outcome read_STL_file_outcome(const std::string& path, bool whole)
+{
+  STL_file_outcome o;
+  // A triangle already held: the facets are appended after it, and it stays on a refusal.
+  o.triangles.push_back({Point(1, 2, 3), Point(4, 5, 6), Point(7, 8, 9)});
+  try {
+    const ST::IO::STL_read_result r =
+      whole ? ST::IO::read_STL_triangles<ConcurrencyTag>(ST::IO::read_file_contents(path), o.triangles, path)
+            : ST::IO::read_STL_file<ConcurrencyTag>(path, o.triangles);
+    o.binary = r.binary;
+    o.read = r.triangles;
+  } catch(const ST::IO::Read_error& e) {
+    o.error = e.what();
+  }
+  return o;
+}
+
+void expect_read_STL_file_as_whole(const std::string& path)
+{
+  SCOPED_TRACE(path);
+  const STL_file_outcome whole = read_STL_file_outcome(path, true);
+  for(const STL_file_outcome& o : {read_STL_file_outcome(path, false),
+                                   read_STL_file_outcome<CGAL::Parallel_if_available_tag>(path, false)}) {
+    EXPECT_EQ(o.error, whole.error);
+    EXPECT_EQ(o.binary, whole.binary);
+    EXPECT_EQ(o.read, whole.read);
+    EXPECT_EQ(o.triangles, whole.triangles);
+  }
+  if(!whole.error.empty()) {
+    EXPECT_EQ(whole.triangles.size(), 1u);
+  }
+}
+
+/// a binary STL of the facets `facets` (each 9 floats), with `header` at the start of its 80 bytes.
+std::string binary_STL_bytes(const std::vector<std::array<float, 9>>& facets, const std::string& header = "")
+{
+  std::string stl = header + std::string(80 - header.size(), ' ');
+  const std::uint32_t n = static_cast<std::uint32_t>(facets.size());
+  stl.append(reinterpret_cast<const char*>(&n), 4);
+  for(const std::array<float, 9>& f : facets) {
+    const float normal[3] = {0, 0, 1};
+    stl.append(reinterpret_cast<const char*>(normal), sizeof normal);
+    stl.append(reinterpret_cast<const char*>(f.data()), sizeof(float) * 9);
+    stl.append(2, '\0');
+  }
+  return stl;
+}
+
+TEST(ReadSTLFile, Issue13EveryDataFileReadsAsWhenHeldWhole)
+{
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for(const fs::directory_entry& e : fs::recursive_directory_iterator(SOUP_TOPOLOGY_DATA_DIR)) {
+    const std::string p = e.path().string();
+    const auto ends_with = [&](const std::string& x) {
+      return p.size() >= x.size() && p.compare(p.size() - x.size(), x.size(), x) == 0;
+    };
+    if(e.is_regular_file() && (ends_with(".stl") || ends_with(".stl.xz"))) files.push_back(p);
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 25u); // admesh, openscad, the pig: binary and ASCII files
+  std::size_t binary = 0, ascii = 0;
+  for(const std::string& f : files) {
+    const std::string path = soup_test::decompressed_file(f);
+    expect_read_STL_file_as_whole(path);
+    (read_STL_file_outcome(path, true).binary ? binary : ascii) += 1;
+  }
+  EXPECT_GT(binary, 0u);
+  EXPECT_GT(ascii, 0u);
+}
+
+TEST(ReadSTLFile, Issue13BlocksAndEdgeCasesReadAsWhenHeldWhole)
+{
+  const std::string folder = soup_test::temporary_folder("read_STL_file");
+  const auto write = [&](const std::string& name, const std::string& bytes) {
+    const std::string path = folder + "/" + name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  };
+  // 3 full blocks and a partial one, every coordinate distinct.
+  std::vector<std::array<float, 9>> facets(3 * ST::IO::STL_facets_per_block + 17);
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> coordinate(-100.f, 100.f);
+  for(std::array<float, 9>& f : facets)
+    for(float& c : f) c = coordinate(rng);
+  const std::string big = binary_STL_bytes(facets);
+  const std::string big_path = write("blocks.stl", big);
+  expect_read_STL_file_as_whole(big_path);
+  EXPECT_EQ(read_STL_file_outcome(big_path, false).triangles.size(), facets.size() + 1);
+  // a binary file whose header says "solid": its size decides
+  expect_read_STL_file_as_whole(write("solid_header.stl", binary_STL_bytes(facets, "solid binary")));
+  // one block exactly, and an empty binary file
+  facets.resize(ST::IO::STL_facets_per_block);
+  expect_read_STL_file_as_whole(write("one_block.stl", binary_STL_bytes(facets)));
+  facets.clear();
+  expect_read_STL_file_as_whole(write("no_facet.stl", binary_STL_bytes(facets)));
+
+  const std::string ascii = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                            "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n";
+  expect_read_STL_file_as_whole(write("ascii.stl", ascii));
+  expect_read_STL_file_as_whole(write("bom.stl", "\xEF\xBB\xBF" + ascii));
+  // White space before "solid" that fills the first block, or ends just before its end.
+  const std::size_t block = 50 * ST::IO::STL_facets_per_block;
+  for(std::size_t spaces : {block + 10, block - 3, block - 5, block - 6})
+    expect_read_STL_file_as_whole(write("spaces" + std::to_string(spaces) + ".stl", std::string(spaces, ' ') + ascii));
+
+  // Refusals: the same messages, the triangles held unchanged.
+  expect_read_STL_file_as_whole(write("truncated.stl", big.substr(0, big.size() - 75)));
+  expect_read_STL_file_as_whole(write("longer.stl", big + "extra"));
+  expect_read_STL_file_as_whole(write("short.stl", std::string(40, '\x01')));
+  expect_read_STL_file_as_whole(write("empty.stl", ""));
+  expect_read_STL_file_as_whole(write("spaces_only.stl", std::string(block + 100, ' ')));
+  expect_read_STL_file_as_whole(write("neither.stl", std::string(1000, 'x')));
+  expect_read_STL_file_as_whole(write("bad_ascii.stl", ascii.substr(0, 60)));
+  expect_read_STL_file_as_whole(folder + "/missing.stl");
+  expect_read_STL_file_as_whole(folder);
+  std::filesystem::remove_all(folder);
+}
+
 // Issue 13: the command-line tool holds 4-byte triangles. Faces of a narrow index type are
 // filled with checked indices: a soup with more points than the type counts is refused with a
 // message, never truncated; one that fits reads the same as into `std::size_t`.

@@ -5,9 +5,10 @@
 //
 // Why not CGAL::IO::read_STL: it welds while reading, through a std::map of points, which makes
 // it the slowest part of a repair of a large STL (see benchmark/index_triangles_benchmark.cpp);
-// and it cannot say which facet or line of a broken file is wrong. Here the file is read once
-// into memory, the triangles are returned as they are, and `index_triangles()` welds them in
-// expected linear time.
+// and it cannot say which facet or line of a broken file is wrong. Here the triangles are
+// returned as they are, decoded from the file's bytes in memory (`read_STL_triangles()`) or from
+// the file read by blocks (`read_STL_file()`), and `index_triangles()` welds them in expected
+// linear time.
 
 #ifndef SOUP_TOPOLOGY_IO_STL_H
 #define SOUP_TOPOLOGY_IO_STL_H
@@ -19,6 +20,7 @@
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/tags.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstdint>
@@ -117,15 +119,19 @@ inline bool has_binary_byte(const char* b, const char* e)
   return false;
 }
 
-/// `true` if the binary STL held in `[b, e)` announces exactly its size.
-inline bool binary_stl_size_matches(const char* b, const char* e)
+/// `true` if the binary STL of `size` bytes starting at `b` announces exactly its size (its
+/// first 84 bytes, when it has them, are in memory at `b`).
+inline bool binary_stl_size_matches(const char* b, std::size_t size)
 {
-  const std::size_t size = static_cast<std::size_t>(e - b);
   if(size < 84) return false;
   std::uint32_t n;
   std::memcpy(&n, b + 80, 4);
   return 84 + 50 * std::uint64_t(n) == size;
 }
+
+/// `true` if the binary STL held in `[b, e)` announces exactly its size.
+inline bool binary_stl_size_matches(const char* b, const char* e)
+{ return binary_stl_size_matches(b, static_cast<std::size_t>(e - b)); }
 
 /// `true` if `[b, e)` starts, after white space, with "solid" (any case).
 inline bool starts_with_solid(const char* b, const char* e)
@@ -137,25 +143,38 @@ inline bool starts_with_solid(const char* b, const char* e)
   return true;
 }
 
-inline bool looks_like_ascii_stl(const char* b, const char* e)
+/// the bytes at the start of an STL file that decide whether it is ASCII or binary (with the
+/// facet count of a binary header), unless they are all white space: a UTF-8 byte order mark,
+/// the 84 bytes of a binary header and 4 facets.
+constexpr std::size_t stl_deciding_bytes = 3 + 84 + 50 * 4;
+
+/// `true` if the file of `size` bytes starting at `b` is an ASCII STL, seen from its first bytes
+/// `[b, prefix_end)`: all of them for a short file, else at least the first
+/// `stl_deciding_bytes`, and at least up to the end of the first word after white space.
+inline bool looks_like_ascii_stl(const char* b, const char* prefix_end, std::size_t size)
 {
-  if(!starts_with_solid(b, e)) return false;
+  if(!starts_with_solid(b, prefix_end)) return false;
   // Some binary files also start with "solid": they are recognised by their exact size, or by
   // a byte that is not text in the header or the first facets.
-  if(binary_stl_size_matches(b, e)) return false;
-  const std::size_t look = static_cast<std::size_t>(e - b) < 84 + 50 * 4 ? static_cast<std::size_t>(e - b) : 84 + 50 * 4;
+  if(binary_stl_size_matches(b, size)) return false;
+  const std::size_t look = size < 84 + 50 * 4 ? size : 84 + 50 * 4;
   return !has_binary_byte(b, b + look);
 }
+
+inline bool looks_like_ascii_stl(const char* b, const char* e)
+{ return looks_like_ascii_stl(b, e, static_cast<std::size_t>(e - b)); }
 
 inline bool looks_like_ascii_stl(const std::string& data)
 { return looks_like_ascii_stl(data.data(), data.data() + data.size()); }
 
-/// the number of facets of the binary STL held in `[data, data + size)`, after checking that
-/// the size is the one its header announces. `name` starts the messages.
+/// the number of facets of the binary STL of `size` bytes starting at `data`, after checking
+/// that the size is the one its header announces, seen from its first bytes `[data,
+/// prefix_end)` (as for `looks_like_ascii_stl()`). `name` starts the messages.
 /// \throws Read_error on a file shorter than its header, or a size that does not match.
-inline std::uint32_t binary_STL_facet_count(const char* data, std::size_t size, const std::string& name)
+inline std::uint32_t binary_STL_facet_count(const char* data, const char* prefix_end, std::size_t size,
+                                            const std::string& name)
 {
-  const char* const end = data + size;
+  const char* const end = prefix_end;
   if(size < 84)
     throw Read_error(name + ": binary STL shorter than its 84-byte header (" + std::to_string(size) + " bytes)");
   std::uint32_t n;
@@ -176,13 +195,26 @@ inline std::uint32_t binary_STL_facet_count(const char* data, std::size_t size, 
   return n;
 }
 
+/// the number of facets of the binary STL held in `[data, data + size)`, see above.
+inline std::uint32_t binary_STL_facet_count(const char* data, std::size_t size, const std::string& name)
+{
+  return binary_STL_facet_count(data, data + size, size, name);
+}
+
+/// corner `k` of the 50-byte binary STL facet that starts at `facet` (its normal first).
+template <class Point>
+Point binary_STL_facet_corner(const char* facet, std::size_t k)
+{
+  float c[3];
+  std::memcpy(c, facet + 12 * (1 + k), sizeof c);
+  return Point(double(c[0]), double(c[1]), double(c[2]));
+}
+
 /// corner `i` (corner `i % 3` of facet `i / 3`) of a checked binary STL held from `data` on.
 template <class Point>
 Point binary_STL_corner(const char* data, std::size_t i)
 {
-  float c[3];
-  std::memcpy(c, data + 84 + 50 * (i / 3) + 12 * (1 + i % 3), sizeof c);
-  return Point(double(c[0]), double(c[1]), double(c[2]));
+  return binary_STL_facet_corner<Point>(data + 84 + 50 * (i / 3), i % 3);
 }
 
 /// appends the facets of the ASCII solids in `[b, e)` (from the first `solid`) to `triangles`;
@@ -324,6 +356,85 @@ constexpr std::size_t default_stream_size_limit = std::size_t(256) << 20;
 inline std::string read_file_contents(const std::string& filename, std::size_t limit = default_stream_size_limit)
 {
   return Soup_topology::internal::read_file_bounded(filename, limit);
+}
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief the facets that `read_STL_file()` reads from a binary file in one block: 8,192 (400 KiB of
+/// the file, in a buffer reused from block to block).
+constexpr std::size_t STL_facets_per_block = std::size_t(1) << 13;
+
+/// \ingroup PkgSoupTopologyIO
+/// \brief reads the STL file `filename` (binary or ASCII), appending each facet as 3 points to
+/// `triangles`: the triangles, the result and the errors of
+/// `read_STL_triangles(read_file_contents(filename, limit), triangles, filename)`, without the
+/// copy of the whole file in memory for a binary one.
+///
+/// A binary regular file is read by blocks of `STL_facets_per_block` facets into one buffer,
+/// each block decoded into `triangles` before the next is read: the memory used is that of the
+/// triangles and of the buffer, and the file's bytes are copied once, from the system's cache
+/// to the buffer. (Holding the whole file, as `read_file_contents()` does, costs a fresh block
+/// of memory as large as the file, which is more than the copy on most systems; see
+/// `doc/Soup_topology/Performance.md`.) An ASCII file, and an input that is not a regular file
+/// (a pipe, a device, read up to `limit` bytes), are read whole first.
+/// \tparam ConcurrencyTag as for `read_STL_triangles()`: with `CGAL::Parallel_tag` every block
+///         is decoded on TBB's threads, with the same result
+/// \tparam Point a `Point_3` constructible from three `double`
+/// \param filename the file; it names the input in the messages
+/// \param triangles receives the triangles read (appended)
+/// \param limit the most bytes read from an input that is not a regular file
+/// \throws Read_error as `read_file_contents()` and `read_STL_triangles()` do, and when a binary
+/// file is shorter, when read, than when its size was taken. `triangles` is left unchanged then.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point>
+STL_read_result read_STL_file(const std::string& filename, std::vector<std::array<Point, 3>>& triangles,
+                              std::size_t limit = default_stream_size_limit)
+{
+  const auto read_whole = [&]() {
+    return read_STL_triangles<ConcurrencyTag>(read_file_contents(filename, limit), triangles, filename);
+  };
+  std::ifstream in;
+  if(!Soup_topology::internal::open_input_file(filename, in)) return read_whole();
+  const std::size_t size = Soup_topology::internal::regular_file_size(in, filename);
+  // The first bytes decide between ASCII and binary as read_STL_triangles() decides on the whole
+  // file, unless the white space at the start (after a byte order mark) leaves no room in them
+  // for "solid": then the whole file is read.
+  static_assert(50 * STL_facets_per_block >= internal::stl_deciding_bytes, "a block holds the bytes that decide");
+  std::vector<char> buffer(50 * STL_facets_per_block);
+  const std::size_t prefix = std::min(size, buffer.size());
+  if(prefix > 0 && !in.read(buffer.data(), static_cast<std::streamsize>(prefix)))
+    throw Read_error(filename + ": cannot read the file");
+  const char* const b = buffer.data();
+  const std::size_t bom = Soup_topology::internal::utf8_bom_size(b, b + prefix);
+  const char* const text = std::find_if(b + bom, b + prefix, [](char c) { return !internal::is_stl_space(c); });
+  if((prefix < size && text + 5 > b + prefix) || internal::looks_like_ascii_stl(b + bom, b + prefix, size - bom))
+    return read_whole();
+
+  constexpr bool parallel_decode =
+    Soup_topology::internal::runs_in_parallel<ConcurrencyTag>() &&
+    std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
+  using Decode_tag = std::conditional_t<parallel_decode, ConcurrencyTag, CGAL::Sequential_tag>;
+  const std::uint32_t n = internal::binary_STL_facet_count(b, b + prefix, size, filename); // throws before any change
+  const std::size_t held = triangles.size();
+  triangles.resize(held + n);
+  try {
+    in.seekg(84, std::ios::beg);
+    for(std::size_t first = 0; first < n; first += STL_facets_per_block) {
+      const std::size_t count = std::min<std::size_t>(STL_facets_per_block, n - first);
+      if(!in.read(buffer.data(), static_cast<std::streamsize>(50 * count)))
+        throw Read_error(filename + ": cannot read the file (it is shorter than when its size was taken)");
+      std::array<Point, 3>* const read = triangles.data() + held + first;
+      const char* const facets = buffer.data();
+      Soup_topology::internal::for_each_index<Decode_tag>(count, [&](std::size_t f) {
+        for(std::size_t k = 0; k < 3; ++k) read[f][k] = internal::binary_STL_facet_corner<Point>(facets + 50 * f, k);
+      });
+    }
+  } catch(...) {
+    triangles.erase(triangles.begin() + static_cast<std::ptrdiff_t>(held), triangles.end());
+    throw;
+  }
+  STL_read_result result;
+  result.binary = true;
+  result.triangles = n;
+  return result;
 }
 
 } // namespace IO

@@ -220,11 +220,10 @@ std::string read_bounded(std::istream& in, const std::string& name, std::size_t 
   return data;
 }
 
-/// reads the whole file `filename`: a regular file whole, anything else that can be opened
-/// (a pipe, a device) up to `limit` bytes, through `check` (see `read_bounded()`).
-template <class Prefix_check = No_prefix_check>
-std::string read_file_bounded(const std::string& filename, std::size_t limit,
-                              const Prefix_check& check = Prefix_check())
+/// opens `filename` for binary reading into `in`; `true` if it is a regular file (one with a
+/// size), `false` for anything else that can be opened (a pipe, a device).
+/// \throws IO::Read_error if it does not exist, is a folder or cannot be opened.
+inline bool open_input_file(const std::string& filename, std::ifstream& in)
 {
   struct stat st;
   if(::stat(filename.c_str(), &st) != 0) {
@@ -232,15 +231,32 @@ std::string read_file_bounded(const std::string& filename, std::size_t limit,
     throw IO::Read_error(filename + ": cannot open the file for reading (" + std::strerror(error) + ")");
   }
   if(S_ISDIR(st.st_mode)) throw IO::Read_error(filename + ": is a folder, not a file");
-  std::ifstream in(filename, std::ios::binary);
+  in.open(filename, std::ios::binary);
   if(!in) throw IO::Read_error(filename + ": cannot open the file for reading");
-  if(!S_ISREG(st.st_mode)) return read_bounded(in, filename, limit, check);
+  return S_ISREG(st.st_mode);
+}
+
+/// the size of the regular file open in `in`, which is left at its start.
+inline std::size_t regular_file_size(std::ifstream& in, const std::string& filename)
+{
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
   if(size < 0) throw IO::Read_error(filename + ": cannot read the file");
-  std::string data(static_cast<std::size_t>(size), '\0');
   in.seekg(0, std::ios::beg);
-  if(size > 0 && !in.read(&data[0], size)) throw IO::Read_error(filename + ": cannot read the file");
+  return static_cast<std::size_t>(size);
+}
+
+/// reads the whole file `filename`: a regular file whole, anything else that can be opened
+/// (a pipe, a device) up to `limit` bytes, through `check` (see `read_bounded()`).
+template <class Prefix_check = No_prefix_check>
+std::string read_file_bounded(const std::string& filename, std::size_t limit,
+                              const Prefix_check& check = Prefix_check())
+{
+  std::ifstream in;
+  if(!open_input_file(filename, in)) return read_bounded(in, filename, limit, check);
+  const std::size_t size = regular_file_size(in, filename);
+  std::string data(size, '\0');
+  if(size > 0 && !in.read(&data[0], static_cast<std::streamsize>(size))) throw IO::Read_error(filename + ": cannot read the file");
   // A file that grew while it was read is read as it was when its size was taken.
   return data;
 }
