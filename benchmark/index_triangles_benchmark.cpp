@@ -12,6 +12,8 @@
 // Benchmarks (CPU time; all reading is from a warm file-system cache):
 // - BM_read_file: the binary STL into a std::string, nothing else (the floor);
 // - BM_read_STL_triangles: the same plus Soup_topology::IO::read_STL_triangles;
+// - BM_read_STL_file: Soup_topology::IO::read_STL_file, the same triangles from the file read by
+//   blocks (the file's bytes never held whole);
 // - BM_index_and_tables: index_triangles + Adjacency_tables on the exploded soup in memory (ours),
 //   triangles in mesh order and shuffled (the worst case for every hash and table);
 // - BM_read_triangle_soup_and_tables: IO::read_triangle_soup of the binary STL (welded while it
@@ -24,7 +26,8 @@
 // - BM_CGAL_read_STL_orient_to_mesh: CGAL::IO::read_STL of the file (it welds while reading),
 //   then orient_polygon_soup and polygon_soup_to_polygon_mesh.
 // Counters "*_ms" give the CPU time of each phase (last iteration); "peak_rss_bytes_per_triangle"
-// the peak resident memory of the process so far (getrusage) per input triangle: run one
+// the peak resident memory of the process so far (getrusage) per input triangle, "page_faults"
+// (the reads) the minor page faults of an iteration: run one
 // benchmark per process (--benchmark_filter) to read it for that benchmark alone. Targets (issue 2): the CGAL
 // pipeline at least 15x slower than BM_index_and_tables, BM_index_and_tables at most 2.5x
 // BM_read_file.
@@ -74,6 +77,7 @@ namespace {
 
 using soup_benchmark::thread_cpu_ms;
 using soup_benchmark::peak_resident_bytes;
+using soup_benchmark::minor_page_faults;
 using soup_benchmark::write_binary_STL;
 
 struct Input
@@ -124,17 +128,20 @@ void set_common_counters(benchmark::State& state)
 void BM_read_file(benchmark::State& state)
 {
   const Input& in = input();
+  const double faults = minor_page_faults();
   for(auto _ : state) {
     std::string data = ST::IO::read_file_contents(in.stl);
     benchmark::DoNotOptimize(data.data());
   }
   set_common_counters(state);
+  state.counters["page_faults"] = (minor_page_faults() - faults) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_read_file)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 void BM_read_STL_triangles(benchmark::State& state)
 {
   const Input& in = input();
+  const double faults = minor_page_faults();
   for(auto _ : state) {
     const std::string data = ST::IO::read_file_contents(in.stl);
     std::vector<Explicit_triangle> soup;
@@ -142,8 +149,23 @@ void BM_read_STL_triangles(benchmark::State& state)
     benchmark::DoNotOptimize(soup.data());
   }
   set_common_counters(state);
+  state.counters["page_faults"] = (minor_page_faults() - faults) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_read_STL_triangles)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_read_STL_file(benchmark::State& state)
+{
+  const Input& in = input();
+  const double faults = minor_page_faults();
+  for(auto _ : state) {
+    std::vector<Explicit_triangle> soup;
+    ST::IO::read_STL_file(in.stl, soup);
+    benchmark::DoNotOptimize(soup.data());
+  }
+  set_common_counters(state);
+  state.counters["page_faults"] = (minor_page_faults() - faults) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_read_STL_file)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_index_and_tables(benchmark::State& state, Order order)
 {
