@@ -373,8 +373,8 @@ constexpr std::size_t STL_facets_per_block = std::size_t(1) << 13;
 /// each block decoded into `triangles` before the next is read: the memory used is that of the
 /// triangles and of the buffer, and the file's bytes are copied once, from the system's cache
 /// to the buffer. (Holding the whole file, as `read_file_contents()` does, costs a fresh block
-/// of memory as large as the file, which is more than the copy on most systems; see
-/// `doc/Soup_topology/Performance.md`.) An ASCII file, and an input that is not a regular file
+/// of memory as large as the file, whose first touch cost more than the copy on the machines
+/// measured; see `doc/Soup_topology/Performance.md`.) An ASCII file, and an input that is not a regular file
 /// (a pipe, a device, read up to `limit` bytes), are read whole first.
 /// \tparam ConcurrencyTag as for `read_STL_triangles()`: with `CGAL::Parallel_tag` every block
 ///         is decoded on TBB's threads, with the same result
