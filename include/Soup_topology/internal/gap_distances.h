@@ -136,7 +136,8 @@ public:
   /// listed or examined. The neighbourhoods come unsorted (`Neighborhood_order::TREE`): the
   /// answer is the least candidate in an order of its own, whatever the order of the offers.
   ///
-  /// With `CGAL::Parallel_tag` both searches run on TBB's threads and the candidates are offered
+  /// With `CGAL::Parallel_tag` and more than one thread allowed, both searches run on TBB's
+  /// threads (on one thread, the sequential searches run) and the candidates are offered
   /// as they are found, in no particular order. The answer does not depend on that order: it is
   /// the least candidate in the order (distance, vertex before edge, index of the vertex or
   /// order of the edge), which is what the sequential offers keep. A vertex's answer is written
@@ -165,7 +166,9 @@ public:
       for(std::size_t c : counts) total += c;
       count_examined(total);
     }
-    if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    // (on one thread, the sequential searches: the same answer without the locks and the atomic
+    // counter of the concurrent ones)
+    if(runs_on_several_threads<ConcurrencyTag>()) {
       std::atomic<std::size_t> examined(examined_);
       const auto count = [&](std::size_t n) {
         if(count_while_searching)
