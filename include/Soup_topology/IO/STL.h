@@ -201,6 +201,15 @@ inline std::uint32_t binary_STL_facet_count(const char* data, std::size_t size, 
   return binary_STL_facet_count(data, data + size, size, name);
 }
 
+/// the tag the facets of a binary STL are decoded with: `ConcurrencyTag` for points whose
+/// coordinates are stored as `double`, sequential for the others (exact number types share
+/// cached state between points).
+template <class ConcurrencyTag, class Point>
+using STL_decode_tag =
+  std::conditional_t<Soup_topology::internal::runs_in_parallel<ConcurrencyTag>() &&
+                       std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value,
+                     ConcurrencyTag, CGAL::Sequential_tag>;
+
 /// corner `k` of the 50-byte binary STL facet that starts at `facet` (its normal first).
 template <class Point>
 Point binary_STL_facet_corner(const char* facet, std::size_t k)
@@ -302,10 +311,7 @@ template <class ConcurrencyTag = CGAL::Sequential_tag, class Point>
 STL_read_result read_STL_triangles(const char* data, std::size_t size, std::vector<std::array<Point, 3>>& triangles,
                                    const std::string& name = "STL")
 {
-  constexpr bool parallel_decode =
-    Soup_topology::internal::runs_in_parallel<ConcurrencyTag>() &&
-    std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
-  using Decode_tag = std::conditional_t<parallel_decode, ConcurrencyTag, CGAL::Sequential_tag>;
+  using Decode_tag = internal::STL_decode_tag<ConcurrencyTag, Point>;
   STL_read_result result;
   // The facets are decoded straight into `triangles`, after what it held: no temporary copy of
   // the soup (at 72 bytes a facet with `double` points, that copy was the larger part of the
@@ -398,7 +404,9 @@ STL_read_result read_STL_file(const std::string& filename, std::vector<std::arra
   // file, unless the white space at the start (after a byte order mark) leaves no room in them
   // for "solid": then the whole file is read.
   static_assert(50 * STL_facets_per_block >= internal::stl_deciding_bytes, "a block holds the bytes that decide");
-  std::vector<char> buffer(50 * STL_facets_per_block);
+  // (no larger than the file, so that a small part of an assembly does not take a whole block;
+  // one byte at least, so that its data is never null)
+  std::vector<char> buffer(std::max<std::size_t>(std::min(size, 50 * STL_facets_per_block), 1));
   const std::size_t prefix = std::min(size, buffer.size());
   if(prefix > 0 && !in.read(buffer.data(), static_cast<std::streamsize>(prefix)))
     throw Read_error(filename + ": cannot read the file");
@@ -408,10 +416,7 @@ STL_read_result read_STL_file(const std::string& filename, std::vector<std::arra
   if((prefix < size && text + 5 > b + prefix) || internal::looks_like_ascii_stl(b + bom, b + prefix, size - bom))
     return read_whole();
 
-  constexpr bool parallel_decode =
-    Soup_topology::internal::runs_in_parallel<ConcurrencyTag>() &&
-    std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value;
-  using Decode_tag = std::conditional_t<parallel_decode, ConcurrencyTag, CGAL::Sequential_tag>;
+  using Decode_tag = internal::STL_decode_tag<ConcurrencyTag, Point>;
   const std::uint32_t n = internal::binary_STL_facet_count(b, b + prefix, size, filename); // throws before any change
   const std::size_t held = triangles.size();
   triangles.resize(held + n);
