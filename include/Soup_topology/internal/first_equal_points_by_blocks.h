@@ -21,8 +21,10 @@
 // soup (a probe, and the coordinates of the point it finds); here only the copy of the
 // representatives does, and it writes in 256 streams. The copies take 32 bytes a representative;
 // when the representatives are more than a quarter of the points (a shuffled soup), they are
-// copied and welded by rounds of consecutive partitions, each round rereading the points, so that
-// the copies never take more than 8 bytes a point.
+// copied and welded by rounds of consecutive partitions, so that the copies never take more than
+// 8 bytes a point. The partition of each representative is kept from step 1 (one byte a point):
+// a round reads and hashes only the points of its own partitions, and every point is read once
+// in step 2, however many rounds there are.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_FIRST_EQUAL_POINTS_BY_BLOCKS_H
 #define SOUP_TOPOLOGY_INTERNAL_FIRST_EQUAL_POINTS_BY_BLOCKS_H
@@ -70,6 +72,10 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
 
     // 1. Each block alone; representatives[b * partitions + q]: those of block b in partition q.
     std::vector<std::uint32_t> representatives(blocks * partitions, 0);
+    // the partition of every representative (only theirs are written and read): a round of step 2
+    // reads the point of a representative of its own partitions only, so that every point is read
+    // and hashed once more whatever the number of rounds
+    Uninitialized_vector<std::uint8_t> partition_of(n);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
       std::uint32_t* count = representatives.data() + b * partitions;
       Fingerprint_table table(2 * (end - begin));
@@ -81,7 +87,10 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
           const Point& o = point(j);
           return o.x() == x && o.y() == y && o.z() == z;
         });
-        if(first_of[i] == i) ++count[partition(hash)];
+        if(first_of[i] == i) {
+          ++count[partition(hash)];
+          partition_of[i] = static_cast<std::uint8_t>(partition(hash));
+        }
       }
     });
 
@@ -115,11 +124,11 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
         std::uint32_t* next = place.data() + b * partitions;
         for(std::size_t i = begin; i != end; ++i) {
           if(first_of[i] != i) continue;
+          const std::size_t q = partition_of[i];
+          if(q < first || q >= last) continue;
           const Point& p = point(i);
           const double x = p.x(), y = p.y(), z = p.z();
           const std::uint64_t hash = hash_of_coordinates(x, y, z);
-          const std::size_t q = partition(hash);
-          if(q < first || q >= last) continue;
           keys[next[q]++ - base] = Key{x, y, z, static_cast<std::uint32_t>(i), fingerprint(hash)};
         }
       });
