@@ -41,6 +41,9 @@
 #include <utility>
 #include <vector>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 // The names of this file live in a namespace of its own: test/CMakeLists.txt compiles several
 // test files as one translation unit.
 namespace IO_test {
@@ -1386,6 +1389,61 @@ TEST(WriteTriangleSoup, Issue13STLRoundingNamesTheLexicographicallyFirstPair)
   std::ostringstream written;
   EXPECT_NO_THROW(ST::IO::write_STL_triangle_soup(written, zeros, fan));
   EXPECT_EQ(written.str().size(), 84u + 2u * 50u);
+}
+
+// The test helper that removes the temporary folders of a process (`soup_test::Temporary_folders`,
+// behind `soup_test::temporary_folder()`): a folder and its files are removed when the helper is
+// destroyed, a folder already gone is no error, `SOUP_TOPOLOGY_KEEP_TEST_FILES` keeps them, and a
+// child process does not remove its parent's.
+TEST(TestUtilities, TemporaryFoldersAreRemovedByTheProcessThatMadeThem)
+{
+  namespace fs = std::filesystem;
+  const char* keep = std::getenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
+  const std::string kept_value = keep != nullptr ? keep : "";
+  unsetenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
+  const auto make_folder = [](const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() /
+                         ("soup_topology_folders_check_" + name + "_" + std::to_string(std::random_device{}()));
+    fs::create_directories(dir / "inner");
+    std::ofstream(dir / "inner" / "file.txt") << "content";
+    return dir;
+  };
+
+  const fs::path removed = make_folder("removed");
+  {
+    soup_test::Temporary_folders folders;
+    folders.add(removed);
+    folders.add(removed / "no_such_folder");
+    EXPECT_TRUE(fs::exists(removed / "inner" / "file.txt"));
+  }
+  EXPECT_FALSE(fs::exists(removed));
+
+  const fs::path parents = make_folder("parents");
+  auto* folders = new soup_test::Temporary_folders;
+  folders->add(parents);
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if(pid == 0) {
+    delete folders; // in the child: not its folder
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_TRUE(fs::exists(parents / "inner" / "file.txt"));
+  delete folders;
+  EXPECT_FALSE(fs::exists(parents));
+
+  const fs::path kept = make_folder("kept");
+  setenv("SOUP_TOPOLOGY_KEEP_TEST_FILES", "1", 1);
+  {
+    soup_test::Temporary_folders keeping;
+    keeping.add(kept);
+  }
+  EXPECT_TRUE(fs::exists(kept / "inner" / "file.txt"));
+  fs::remove_all(kept);
+  if(keep != nullptr) setenv("SOUP_TOPOLOGY_KEEP_TEST_FILES", kept_value.c_str(), 1);
+  else unsetenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
 }
 
 } // namespace

@@ -16,11 +16,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <random>
+#include <system_error>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 namespace soup_test {
 
@@ -59,13 +63,52 @@ inline std::string data_file(const std::string& relative)
   return decompressed_file(std::string(SOUP_TOPOLOGY_DATA_DIR) + "/" + relative);
 }
 
-/// a fresh temporary folder for a test.
+/// The folders made by `temporary_folder()` in this process, removed with their files when the
+/// process exits normally (a test that fails, or returns early, leaves nothing behind). Set the
+/// environment variable `SOUP_TOPOLOGY_KEEP_TEST_FILES` to keep them, for example to look at the
+/// files of a failed test. A child process (`fork()`) that exits does not remove its parent's.
+class Temporary_folders
+{
+public:
+  Temporary_folders() : owner_(getpid()) {}
+  Temporary_folders(const Temporary_folders&) = delete;
+  Temporary_folders& operator=(const Temporary_folders&) = delete;
+  ~Temporary_folders()
+  {
+    if(getpid() != owner_ || std::getenv("SOUP_TOPOLOGY_KEEP_TEST_FILES") != nullptr) return;
+    for(const std::filesystem::path& folder : folders_) {
+      std::error_code ignored; // (a folder the test removed itself is no error)
+      std::filesystem::remove_all(folder, ignored);
+    }
+  }
+
+  void add(const std::filesystem::path& folder)
+  {
+    const std::lock_guard<std::mutex> hold(mutex_);
+    folders_.push_back(folder);
+  }
+
+private:
+  pid_t owner_;
+  std::mutex mutex_;
+  std::vector<std::filesystem::path> folders_;
+};
+
+inline Temporary_folders& temporary_folders()
+{
+  static Temporary_folders folders;
+  return folders;
+}
+
+/// a fresh temporary folder for a test, removed when the process exits (`Temporary_folders`).
 inline std::string temporary_folder(const std::string& name)
 {
   namespace fs = std::filesystem;
+  Temporary_folders& folders = temporary_folders();
   const fs::path dir = fs::temp_directory_path() /
                        ("soup_topology_" + name + "_" + std::to_string(std::random_device{}()));
   fs::create_directories(dir);
+  folders.add(dir);
   return dir.string();
 }
 
