@@ -800,6 +800,57 @@ bool same(std::size_t value, std::size_t expected, const char* what)
   return value == expected;
 }
 
+// The edges of a vertex are grouped by a sort in place when they are few (up to
+// `sorted_row_limit`, 32 edges to later vertices) and by buckets when they are more: the two
+// groupings must give the same tables. A soup in random order whose vertices have from 1 to 60
+// such edges, with repeated triangles and non-manifold edges, against a brute-force table.
+TEST(AdjacencyTables, Issue13FewAndManyEdgesOfAVertexGroupAlike)
+{
+  std::mt19937 rng(1313);
+  std::vector<Tables::Triangle> tris;
+  // vertex 0: 30 triangles on ten other vertices (60 edges to later vertices); vertices 11..40,
+  // a strip; the rest at random among 41..60, and a few copies of earlier triangles
+  for(size_type k = 0; k < 30; ++k) tris.push_back({0, 1 + k % 10, 1 + (k + 1 + k / 10) % 10});
+  for(size_type k = 11; k + 2 <= 40; ++k) tris.push_back({k, k + 1, k + 2});
+  while(tris.size() < 200) {
+    if(rng() % 5 == 0) {
+      tris.push_back(tris[rng() % tris.size()]);
+      continue;
+    }
+    const size_type a = 41 + rng() % 20, b = 41 + rng() % 20, c = 41 + rng() % 20;
+    if(a != b && b != c && c != a) tris.push_back({a, b, c});
+  }
+  std::shuffle(tris.begin(), tris.end(), rng);
+  const Tables adj(tris, 61);
+  std::size_t long_rows = 0, short_rows = 0;
+  for(size_type v = 0; v < 61; ++v) {
+    std::size_t edges = 0; // with their copies
+    for(size_type t : adj.triangles_around_vertex(v)) {
+      const int i = adj.local_index(t, v);
+      edges += (adj.vertex(t, (i + 1) % 3) > v ? 1 : 0) + (adj.vertex(t, (i + 2) % 3) > v ? 1 : 0);
+    }
+    (edges > 32 ? long_rows : short_rows) += edges > 0 ? 1 : 0;
+  }
+  EXPECT_GE(long_rows, 1u);
+  EXPECT_GE(short_rows, 20u);
+  for(size_type t = 0; t < tris.size(); ++t)
+    for(int i = 0; i < 3; ++i) {
+      const size_type a = tris[t][std::size_t(i)], b = tris[t][std::size_t((i + 1) % 3)];
+      std::vector<size_type> with_edge;
+      for(size_type u = 0; u < tris.size(); ++u) {
+        const auto& tr = tris[u];
+        if(std::count(tr.begin(), tr.end(), a) == 1 && std::count(tr.begin(), tr.end(), b) == 1 && u != t)
+          with_edge.push_back(u);
+      }
+      const size_type expected = with_edge.empty() ? Tables::border_edge
+                                 : with_edge.size() == 1 ? with_edge[0] : Tables::non_manifold_edge;
+      EXPECT_EQ(adj.neighbor(t, i), expected) << "triangle " << t << ", edge " << i;
+    }
+  std::vector<Tables::Edge> non_manifold = adj.non_manifold_edges();
+  EXPECT_FALSE(non_manifold.empty());
+  EXPECT_TRUE(std::is_sorted(non_manifold.begin(), non_manifold.end()));
+}
+
 TEST(AdjacencyTables, Issue21RepeatedTriangle)
 {
   // One triangle 100,000 times: every pair of copies shares three edges.

@@ -48,9 +48,10 @@ namespace Soup_topology {
 /// increasing order (stored as compressed rows with room to grow, so local updates are cheap).
 ///
 /// **Construction** is linear in the size of the soup, whatever the soup: one pass fills the
-/// vertex table, then the edges of each vertex `a` are bucketed by their other end `b > a`, so
-/// every edge is met with all its triangles at once (a triangle repeated many times, or many
-/// triangles on one edge, cost no more than as many separate triangles). The global queries
+/// vertex table, then the edges of each vertex `a` are grouped by their other end `b > a` (a few
+/// sorted in place, many bucketed), so every edge is met with all its triangles at once (a
+/// triangle repeated many times, or many triangles on one edge, cost no more than as many
+/// separate triangles). The global queries
 /// (`non_manifold_edges()`, `non_manifold_vertices()`, `number_of_connected_components()`, ...)
 /// are linear too.
 ///
@@ -122,7 +123,8 @@ public:
 
   /// builds the tables of `faces` over `number_of_points` points, on TBB's threads when
   /// `ConcurrencyTag` asks for it (`doc/Soup_topology/Parallel.md`). The tables are the same,
-  /// entry for entry, as those of the sequential constructor, on any number of threads.
+  /// entry for entry, as those of the sequential constructor, on any number of threads. When TBB
+  /// allows one thread only, the sequential construction runs (it does less work).
   /// \tparam FaceRange a range of faces, each a random-access range of 3 vertex indices.
   /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
   ///         `CGAL::Parallel_if_available_tag`
@@ -158,7 +160,9 @@ public:
         ++face_id;
       }
     }
-    if constexpr(internal::runs_in_parallel<ConcurrencyTag>())
+    // (on one thread, the sequential build: the same tables without the atomic counts and the
+    // sort of every row)
+    if(internal::runs_on_several_threads<ConcurrencyTag>())
       build_in_parallel<ConcurrencyTag>(number_of_points);
     else
       build(number_of_points);
@@ -581,50 +585,81 @@ private:
 
   void set_neighbor(size_type t, int i, size_type value) { neighbors_[3 * std::size_t(t) + std::size_t(i)] = value; }
 
+  // The most edges of one vertex (to vertices after it) that `for_each_edge()` sorts by insertion:
+  // a vertex of a mesh has about 12, so nearly every vertex of a soup takes the short path.
+  static constexpr std::size_t sorted_row_limit = 32;
+
   // Calls f(a, b, first, last) once for every distinct edge {a, b} (a < b) of the triangles, with
-  // [first, last) its copies (triangle, local index) in increasing triangle order. The edges of
-  // each vertex a are bucketed by their other end b > a (two passes over the triangles of a:
-  // count, then place), so the enumeration is linear in the size of the soup however many
-  // triangles share an edge.
+  // [first, last) its copies (triangle, local index) in increasing triangle order (the edges of
+  // one vertex a come in no particular order of b). The edges of each vertex a to the vertices
+  // b > a are gathered from its triangles, which are read once, and grouped by b:
+  // - up to `sorted_row_limit` of them, by a stable insertion sort on b, in place: it reads
+  //   nothing but the vertex's own triangles, which matters when the other ends are far apart in
+  //   memory (a soup whose triangles are not in mesh order);
+  // - more, by buckets (count, then place, with a mark per vertex b made at the first such
+  //   vertex), so the enumeration is linear in the size of the soup however many triangles share
+  //   a vertex or an edge.
   template <class F>
   void for_each_edge(F&& f) const
   {
     const std::size_t nv = number_of_vertices();
-    std::vector<size_type> mark(nv, 0);   // mark[b] == a + 1: b has a bucket in the pass of a
-    std::vector<size_type> slot(nv);      // the bucket of b, valid when marked
-    std::vector<size_type> ends, count, cursor;
-    std::vector<Edge> bucket;
+    struct End { size_type other; Edge edge; };
+    std::vector<End> ends;
+    std::vector<Edge> grouped;
+    std::vector<size_type> mark;  // mark[b] == a + 1: b has a bucket in the pass of a (long lists only)
+    std::vector<size_type> slot;  // the bucket of b, valid when marked
+    std::vector<size_type> others, count, cursor;
     for(size_type a = 0; a < nv; ++a) {
       const Id_range around = triangles_around_vertex(a);
       if(around.empty()) continue;
       ends.clear();
-      count.clear();
-      for(size_type t : around) {
-        const int ia = local_index(t, a);
-        for(const size_type b : {vertex(t, (ia + 1) % 3), vertex(t, (ia + 2) % 3)}) {
-          if(b < a) continue;
-          if(mark[b] != a + 1) {
-            mark[b] = a + 1;
-            slot[b] = static_cast<size_type>(ends.size());
-            ends.push_back(b);
-            count.push_back(0);
-          }
-          ++count[slot[b]];
-        }
-      }
-      cursor.resize(ends.size());
-      std::size_t total = 0;
-      for(std::size_t k = 0; k < ends.size(); ++k) { cursor[k] = static_cast<size_type>(total); total += count[k]; }
-      bucket.resize(total);
+      // in increasing triangle order; the two ends of one triangle are distinct
       for(size_type t : around) {
         const int ia = local_index(t, a);
         const size_type next = vertex(t, (ia + 1) % 3), previous = vertex(t, (ia + 2) % 3);
-        if(next > a) bucket[cursor[slot[next]]++] = Edge{t, ia};
-        if(previous > a) bucket[cursor[slot[previous]]++] = Edge{t, (ia + 2) % 3};
+        if(next > a) ends.push_back(End{next, Edge{t, ia}});
+        if(previous > a) ends.push_back(End{previous, Edge{t, (ia + 2) % 3}});
       }
-      const Edge* first = bucket.data();
-      for(std::size_t k = 0; k < ends.size(); ++k) {
-        f(a, ends[k], first, first + count[k]);
+      grouped.resize(ends.size());
+      if(ends.size() <= sorted_row_limit) {
+        for(std::size_t k = 1; k < ends.size(); ++k) {
+          const End e = ends[k];
+          std::size_t j = k;
+          for(; j > 0 && e.other < ends[j - 1].other; --j) ends[j] = ends[j - 1];
+          ends[j] = e;
+        }
+        for(std::size_t k = 0; k < ends.size(); ++k) grouped[k] = ends[k].edge;
+        std::size_t k = 0;
+        while(k < ends.size()) {
+          std::size_t l = k + 1;
+          while(l < ends.size() && ends[l].other == ends[k].other) ++l;
+          f(a, ends[k].other, grouped.data() + k, grouped.data() + l);
+          k = l;
+        }
+        continue;
+      }
+      if(mark.empty()) {
+        mark.assign(nv, 0);
+        slot.resize(nv);
+      }
+      others.clear();
+      count.clear();
+      for(const End& e : ends) {
+        if(mark[e.other] != a + 1) {
+          mark[e.other] = a + 1;
+          slot[e.other] = static_cast<size_type>(others.size());
+          others.push_back(e.other);
+          count.push_back(0);
+        }
+        ++count[slot[e.other]];
+      }
+      cursor.resize(others.size());
+      std::size_t total = 0;
+      for(std::size_t k = 0; k < others.size(); ++k) { cursor[k] = static_cast<size_type>(total); total += count[k]; }
+      for(const End& e : ends) grouped[cursor[slot[e.other]]++] = e.edge;
+      const Edge* first = grouped.data();
+      for(std::size_t k = 0; k < others.size(); ++k) {
+        f(a, others[k], first, first + count[k]);
         first += count[k];
       }
     }
