@@ -34,6 +34,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -1399,7 +1400,8 @@ TEST(TestUtilities, TemporaryFoldersAreRemovedByTheProcessThatMadeThem)
 {
   namespace fs = std::filesystem;
   const char* keep = std::getenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
-  const std::string kept_value = keep != nullptr ? keep : "";
+  const bool had_keep = keep != nullptr;
+  const std::string kept_value = had_keep ? keep : "";
   unsetenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
   const auto make_folder = [](const std::string& name) {
     const fs::path dir = fs::temp_directory_path() /
@@ -1419,19 +1421,19 @@ TEST(TestUtilities, TemporaryFoldersAreRemovedByTheProcessThatMadeThem)
   EXPECT_FALSE(fs::exists(removed));
 
   const fs::path parents = make_folder("parents");
-  auto* folders = new soup_test::Temporary_folders;
+  auto folders = std::make_unique<soup_test::Temporary_folders>();
   folders->add(parents);
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);
   if(pid == 0) {
-    delete folders; // in the child: not its folder
+    folders.reset(); // in the child: not its folder
     _exit(0);
   }
   int status = 0;
   waitpid(pid, &status, 0);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   EXPECT_TRUE(fs::exists(parents / "inner" / "file.txt"));
-  delete folders;
+  folders.reset();
   EXPECT_FALSE(fs::exists(parents));
 
   const fs::path kept = make_folder("kept");
@@ -1442,7 +1444,7 @@ TEST(TestUtilities, TemporaryFoldersAreRemovedByTheProcessThatMadeThem)
   }
   EXPECT_TRUE(fs::exists(kept / "inner" / "file.txt"));
   fs::remove_all(kept);
-  if(keep != nullptr) setenv("SOUP_TOPOLOGY_KEEP_TEST_FILES", kept_value.c_str(), 1);
+  if(had_keep) setenv("SOUP_TOPOLOGY_KEEP_TEST_FILES", kept_value.c_str(), 1);
   else unsetenv("SOUP_TOPOLOGY_KEEP_TEST_FILES");
 }
 
