@@ -396,10 +396,12 @@ private:
       for(std::size_t k = begin; k < end; ++k)
         for(int i = 0; i < 3; ++i) {
           const size_type t = static_cast<size_type>(k);
-          const std::uint32_t a = local[tables_.vertex(t, i)], b = local[tables_.vertex(t, (i + 1) % 3)];
+          const size_type u = tables_.vertex(t, i), v = tables_.vertex(t, (i + 1) % 3);
+          const std::uint32_t a = local[u], b = local[v];
           if(a == not_candidate || b == not_candidate) continue;
-          if(tolerances_ != nullptr ? within_pair_tolerance(candidates_[a], candidates_[b])
-                                    : within_squared(candidate_point(a), candidate_point(b), eps2))
+          // (the points of the soup, read in the order of its triangles: the octree's copies are
+          // the same points, in another order)
+          if(tolerances_ != nullptr ? within_pair_tolerance(u, v) : within_squared(point(u), point(v), eps2))
             found[g].emplace_back(std::min(a, b), std::max(a, b));
         }
     });
@@ -414,7 +416,9 @@ private:
   }
 
   // The octree's self-join: unites every pair within the tolerance and fills the rows of
-  // neighbours (each row in increasing order of its candidates), leaving out same-triangle pairs.
+  // neighbours, leaving out same-triangle pairs. A row is in the order of the octree's leaves
+  // (`Neighborhood_order::TREE`: no sort of each neighbourhood): its only reader,
+  // `gather_members()`, sorts the members it keeps by an order of its own.
   // A row depends on its candidate's neighbourhood only, and the union-find links every root
   // under the smaller one, so that a component's root is its smallest candidate whatever the
   // order of the unions: with the tag and double coordinates the neighbourhoods are handed over
@@ -457,7 +461,7 @@ private:
       }
       row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
       if(!collapse_) mark_mates(c, 0);
-    });
+    }, Neighborhood_order::TREE);
   }
 
   // `true` if a row of up to `length` neighbours can start in `row`: its end stays within the room
@@ -523,7 +527,7 @@ private:
             row->push_back(static_cast<std::uint32_t>(d));
         }
         row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
-      });
+      }, Neighborhood_order::TREE);
     components.into(components_);
   }
 
@@ -587,7 +591,9 @@ private:
     auto run_block = [&](std::size_t b) {
       std::unique_ptr<Cluster_scratch> scratch = pool.acquire();
       Cluster_block& out = results[b];
-      for(std::size_t k = block_begin[b]; k != block_begin[b + 1]; ++k) {
+      const std::size_t end = block_begin[b + 1];
+      for(std::size_t k = block_begin[b]; k != end; ++k) {
+        if(!dense_) prefetch_visits(visits, k, end);
         const std::uint32_t rep = visits[k];
         if(assigned_[rep]) continue;
         assigned_[rep] = 1;
@@ -616,6 +622,59 @@ private:
     Uninitialized_vector<std::uint32_t>().swap(candidate_of_);
     Uninitialized_vector<std::uint32_t>().swap(rank_);
     release_tolerance_graph();
+  }
+
+  // The visits of the clusters read, for each representative, its row, and for each of its
+  // neighbours whether it is assigned, its vertex and its point: in an exploded soup the copies
+  // of one point are far apart in the candidates' order, and each of these reads missed the cache. The reads of the
+  // visits a few steps ahead are prefetched in stages, each stage reading what an earlier one
+  // brought in (a hint only: nothing is decided on what it reads).
+#if defined(__GNUC__) || defined(__clang__)
+  // (always inlined: GCC finds a function that only prefetches free of side effects and drops
+  // the calls to it)
+  __attribute__((always_inline))
+#endif
+  void prefetch_visits(const Uninitialized_vector<std::uint32_t>& visits, std::size_t k, std::size_t end) const
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    const auto row_of = [&](std::uint32_t v) -> const std::uint32_t* {
+      return rows_[row_buffer_.empty() ? 0 : row_buffer_[v]].data() + row_start_[v];
+    };
+    constexpr std::size_t row_ahead = 24, start_ahead = 12, neighbour_ahead = 6, point_ahead = 3, most = 8;
+    if(k + row_ahead < end) {
+      const std::uint32_t v = visits[k + row_ahead];
+      __builtin_prefetch(&assigned_[v]);
+      __builtin_prefetch(&row_start_[v]);
+      __builtin_prefetch(&row_size_[v]);
+      __builtin_prefetch(&candidates_[v]);
+      if(!row_buffer_.empty()) __builtin_prefetch(&row_buffer_[v]);
+    }
+    if(k + start_ahead < end) {
+      const std::uint32_t v = visits[k + start_ahead];
+      __builtin_prefetch(row_of(v));
+      __builtin_prefetch(&points_[candidates_[v]]);
+    }
+    if(k + neighbour_ahead < end) {
+      const std::uint32_t v = visits[k + neighbour_ahead];
+      if(!assigned_[v]) {
+        const std::uint32_t* row = row_of(v);
+        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
+          __builtin_prefetch(&assigned_[row[q]]);
+          __builtin_prefetch(&candidates_[row[q]]);
+        }
+      }
+    }
+    if(k + point_ahead < end) {
+      const std::uint32_t v = visits[k + point_ahead];
+      if(!assigned_[v]) {
+        const std::uint32_t* row = row_of(v);
+        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q)
+          __builtin_prefetch(&points_[candidates_[row[q]]]);
+      }
+    }
+#else
+    (void)visits; (void)k; (void)end;
+#endif
   }
 
   // The octree, the candidates' points and the rows of the tolerance graph are read by no step
@@ -689,7 +748,8 @@ private:
   }
 
   // The unassigned neighbours of the representative `rep` that share no triangle with it,
-  // nearest first (ties by `Less_xyz_3`), into `scratch.members`.
+  // nearest first (ties by `Less_xyz_3`, then by candidate: a total order, so that the members
+  // come in the same order whatever the order of the row), into `scratch.members`.
   void gather_members(std::uint32_t rep, Cluster_scratch& scratch)
   {
     std::vector<std::uint32_t>& members = scratch.members;
@@ -728,7 +788,7 @@ private:
         }
         const CGAL::Comparison_result r = compare_distance(center, candidate_point(a.second), candidate_point(b.second));
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_xyz(candidate_point(a.second), candidate_point(b.second));
+        return less_in_xyz_then_index(a.second, b.second, less_xyz);
       });
       for(std::size_t k = 0; k < members.size(); ++k) members[k] = member_distances[k].second;
     } else {
@@ -736,10 +796,19 @@ private:
         const CGAL::Comparison_result r = compare_distances(center, candidate_point(a), candidate_point(b),
                                                             compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_xyz(candidate_point(a), candidate_point(b));
+        return less_in_xyz_then_index(a, b, less_xyz);
       });
     }
     members.erase(std::unique(members.begin(), members.end()), members.end());
+  }
+
+  // `Less_xyz_3` on the points of candidates `a` and `b`, then their indices (equal points only
+  // when the caller's points are not pairwise distinct).
+  bool less_in_xyz_then_index(std::uint32_t a, std::uint32_t b, const typename Kernel::Less_xyz_3& less_xyz) const
+  {
+    if(less_xyz(candidate_point(a), candidate_point(b))) return true;
+    if(less_xyz(candidate_point(b), candidate_point(a))) return false;
+    return a < b;
   }
 
   // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
