@@ -373,6 +373,42 @@ TEST(Refusals, NoChainingBeyondTheTolerance)
   EXPECT_FALSE(r.ambiguous_sites.empty());
 }
 
+TEST(Refusals, Issue13EquallyNearMembersJoinInLexicographicOrderWhateverTheNumbering)
+{
+  // A at the origin; B = (0, 1, 0) and C = (0, 0, 1) of one triangle, both at distance 1 from A
+  // and sqrt(2) from each other; tolerance 1.2. Only one of B and C can join A: the tie of their
+  // distances is broken by Less_xyz_3 (C before B), so C moves to A and B is refused, for every
+  // numbering of the six points and both orders of the triangles (the rows of the tolerance
+  // graph come in the octree's order, not sorted: the members' order must not depend on them).
+  const std::array<Point, 6> named = {Point(0, 0, 0),    Point(-10, 0, -10), Point(-10, -10, 0), // A, P1, P2
+                                      Point(0, 1, 0),    Point(0, 0, 1),     Point(0, 10, 10)};  // B, C, Q
+  const std::array<std::array<int, 3>, 2> named_triangles = {{{0, 1, 2}, {3, 4, 5}}};
+  std::array<int, 6> label = {0, 1, 2, 3, 4, 5}; // label[k]: the index of named point k
+  std::size_t runs = 0;
+  do {
+    for(int order = 0; order < 2; ++order) {
+      std::vector<Point> points(6);
+      for(int k = 0; k < 6; ++k) points[static_cast<std::size_t>(label[static_cast<std::size_t>(k)])] = named[static_cast<std::size_t>(k)];
+      std::vector<Triangle> triangles;
+      for(int t = 0; t < 2; ++t) {
+        const std::array<int, 3>& nt = named_triangles[static_cast<std::size_t>(order == 0 ? t : 1 - t)];
+        triangles.push_back({static_cast<std::size_t>(label[static_cast<std::size_t>(nt[0])]),
+                             static_cast<std::size_t>(label[static_cast<std::size_t>(nt[1])]),
+                             static_cast<std::size_t>(label[static_cast<std::size_t>(nt[2])])});
+      }
+      const ST::Snap_report r = ST::snap_vertices(points, triangles, CGAL::parameters::snapping_tolerance(1.2));
+      ASSERT_EQ(r.merged_vertices, 1u);
+      ASSERT_EQ(r.refused_same_triangle, 1u);
+      const Triangle& second = triangles[order == 0 ? 1 : 0];
+      ASSERT_EQ(points[second[0]], named[3]);
+      ASSERT_EQ(points[second[1]], named[0]) << "C moved to A";
+      ASSERT_EQ(points[second[2]], named[5]);
+      ++runs;
+    }
+  } while(std::next_permutation(label.begin(), label.end()));
+  EXPECT_EQ(runs, 1440u);
+}
+
 TEST(Refusals, AFlipIsRefused)
 {
   // Triangle (0,1,2) with vertex 2 near vertex 3 across the edge (0,1): welding 2 onto 3 would
