@@ -626,9 +626,10 @@ private:
 
   // The visits of the clusters read, for each representative, its row, and for each of its
   // neighbours whether it is assigned, its vertex and its point: in an exploded soup the copies
-  // of one point are far apart in the candidates' order, and each of these reads missed the cache. The reads of the
-  // visits a few steps ahead are prefetched in stages, each stage reading what an earlier one
-  // brought in (a hint only: nothing is decided on what it reads).
+  // of one point are far apart in the candidates' order, and each of these reads missed the
+  // cache. The reads of the visits a few steps ahead are prefetched in stages, each stage reading
+  // what an earlier one brought in (a hint only: nothing is decided on what it reads). At most
+  // `most` neighbours of a visit are prefetched, so a long row costs no more here.
 #if defined(__GNUC__) || defined(__clang__)
   // (always inlined: GCC finds a function that only prefetches free of side effects and drops
   // the calls to it)
@@ -769,7 +770,7 @@ private:
       for(std::size_t k = row_start_[rep], end = k + row_size_[rep]; k < end; ++k)
         if(!assigned_[row[k]]) members.push_back(row[k]);
     }
-    const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
+    const typename Kernel::Compare_xyz_3 compare_xyz = kernel_.compare_xyz_3_object();
     const typename Kernel::Compare_distance_3 compare_distance = kernel_.compare_distance_3_object();
     const Point& center = candidate_point(rep);
     if constexpr(std::is_same<FT, double>::value) {
@@ -788,7 +789,7 @@ private:
         }
         const CGAL::Comparison_result r = compare_distance(center, candidate_point(a.second), candidate_point(b.second));
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_in_xyz_then_index(a.second, b.second, less_xyz);
+        return less_in_xyz_then_index(a.second, b.second, compare_xyz);
       });
       for(std::size_t k = 0; k < members.size(); ++k) members[k] = member_distances[k].second;
     } else {
@@ -796,18 +797,18 @@ private:
         const CGAL::Comparison_result r = compare_distances(center, candidate_point(a), candidate_point(b),
                                                             compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_in_xyz_then_index(a, b, less_xyz);
+        return less_in_xyz_then_index(a, b, compare_xyz);
       });
     }
     members.erase(std::unique(members.begin(), members.end()), members.end());
   }
 
-  // `Less_xyz_3` on the points of candidates `a` and `b`, then their indices (equal points only
-  // when the caller's points are not pairwise distinct).
-  bool less_in_xyz_then_index(std::uint32_t a, std::uint32_t b, const typename Kernel::Less_xyz_3& less_xyz) const
+  // `Less_xyz_3` on the points of candidates `a` and `b` (one `Compare_xyz_3`), then their
+  // indices (equal points only when the caller's points are not pairwise distinct).
+  bool less_in_xyz_then_index(std::uint32_t a, std::uint32_t b, const typename Kernel::Compare_xyz_3& compare_xyz) const
   {
-    if(less_xyz(candidate_point(a), candidate_point(b))) return true;
-    if(less_xyz(candidate_point(b), candidate_point(a))) return false;
+    const CGAL::Comparison_result r = compare_xyz(candidate_point(a), candidate_point(b));
+    if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
     return a < b;
   }
 
