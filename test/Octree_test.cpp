@@ -836,6 +836,52 @@ TEST(Octree, PointByIndexOutlivesTheRange)
   EXPECT_THROW(tree->point(xyz.size()), ST::Invalid_input);
 }
 
+// After `number_points_in_tree_order()` point i is the i-th in Morton order, which was point
+// `order[i]`: every answer is the former one renumbered (checked against brute force on the
+// range permuted by `order`), the self-join visits the points 0, 1, 2, ... in turn, and the
+// order is the one `points(0)` listed before.
+template <typename K>
+void check_numbering_in_tree_order(const std::vector<Xyz>& xyz, std::size_t capacity, double r)
+{
+  using FT = typename K::FT;
+  const std::vector<typename K::Point_3> pts = to_points<K>(xyz);
+  ST::Octree<K> tree(pts, ST::parameters::bucket_capacity(capacity));
+  const std::vector<std::uint32_t> listed(tree.points(0).begin(), tree.points(0).end());
+  const auto order = tree.number_points_in_tree_order();
+  ASSERT_EQ(std::vector<std::uint32_t>(order.begin(), order.end()), listed);
+  std::vector<std::uint32_t> sorted(order.begin(), order.end());
+  std::sort(sorted.begin(), sorted.end());
+  for(std::size_t i = 0; i < sorted.size(); ++i)
+    ASSERT_EQ(sorted[i], i); // a permutation
+  std::vector<typename K::Point_3> permuted;
+  for(std::uint32_t id : order) permuted.push_back(pts[id]);
+  for(std::size_t i = 0; i < permuted.size(); ++i)
+  {
+    ASSERT_EQ(tree.point(i), permuted[i]) << i;
+    ASSERT_EQ(*(tree.points(0).begin() + std::ptrdiff_t(i)), i);
+  }
+  std::size_t next = 0;
+  tree.for_each_neighborhood(FT(r), [&](std::size_t i, const std::vector<std::size_t>& near) {
+    ASSERT_EQ(i, next++);
+    ASSERT_EQ(near, brute_near_point<K>(permuted, permuted[i], FT(r))) << i;
+  });
+  EXPECT_EQ(next, permuted.size());
+  for(std::size_t i = 0; i < permuted.size(); i += 13)
+  {
+    std::vector<std::size_t> got;
+    tree.vertices_near_point(permuted[i], FT(r), std::back_inserter(got));
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, brute_near_point<K>(permuted, permuted[i], FT(r))) << i;
+  }
+}
+
+TEST(Octree, Issue13NumberingInTreeOrderRenumbersEveryAnswer)
+{
+  check_numbering_in_tree_order<Epick>(clustered_points(3000, 63), 4, 0.01);
+  check_numbering_in_tree_order<Epick>(uniform_points(2000, 64), 16, 0.05);
+  check_numbering_in_tree_order<Epeck>(clustered_points(400, 65), 8, 0.01);
+}
+
 TEST(Octree, SegmentJoinRejectsIndicesOutOfRange)
 {
   const std::vector<Epick::Point_3> pts = to_points<Epick>(uniform_points(10, 55));

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -593,6 +594,21 @@ public:
   Point_index_range points(Node_index n) const
   {
     return Point_index_range(ids_.data() + nodes_[n].begin, ids_.data() + nodes_[n].end);
+  }
+
+  /// numbers the points in the order of the tree from now on: point `i` of every later query,
+  /// callback and `point(i)` is the `i`-th point in Morton order (`points(0)` becomes 0, 1, 2,
+  /// ...). The tree is otherwise unchanged. Returns the former numbering: the `i`-th point in
+  /// Morton order was `order[i]`. For a caller that then keeps its own data about the points in
+  /// the tree's order, where neighbours are close in memory too.
+  internal::Uninitialized_vector<std::uint32_t> number_points_in_tree_order()
+  {
+    internal::Uninitialized_vector<std::uint32_t> order;
+    order.swap(ids_);
+    ids_.resize(order.size());
+    std::iota(ids_.begin(), ids_.end(), 0u);
+    std::copy(ids_.begin(), ids_.end(), positions_.begin());
+    return order;
   }
 
   /// the workspace cube: minimal corner and side length
