@@ -1094,6 +1094,83 @@ TEST(SnapVertices, Issue13PointsUnderTheIdentityMapAreNotCopied)
   EXPECT_EQ(read, points);
 }
 
+// The weld numbers its candidates in the octree's order while it forms the clusters, and by
+// vertex again before it tells its merges; the same-triangle pairs keep their vertex order. A
+// soup of slivers at random places (vertex order and Morton order unrelated), each with two
+// corners within the tolerance, and a loose triangle on copies of two of its corners: the merges are told in
+// increasing vertex order; under REFUSE the first refusals are the same-triangle pairs, each told
+// once as (larger vertex, smaller vertex), exactly the pairs found by brute force; under COLLAPSE
+// `small_features_resolved` counts the pairs whose two vertices end at one vertex.
+TEST(SnapVertices, Issue13CandidatesInTreeOrderTellDecisionsByVertex)
+{
+  const double tol = 0.01;
+  std::mt19937 gen(1313);
+  std::uniform_real_distribution<double> place(0, 10), jitter(-0.1 * tol, 0.1 * tol);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  for(std::size_t i = 0; i < 400; ++i) {
+    const Point p(place(gen), place(gen), place(gen));
+    const std::size_t a = points.size();
+    points.push_back(p);
+    points.push_back(Point(p.x() + 0.3 * tol, p.y() + jitter(gen), p.z()));
+    points.push_back(Point(p.x(), p.y() + 0.05, p.z() + 0.02));
+    triangles.push_back({a, a + 1, a + 2});
+    // (a copy of the sliver's first and third corners: the sliver's collapse onto its edge is
+    // covered by this triangle, so that COLLAPSE keeps it)
+    points.push_back(Point(p.x() + jitter(gen), p.y() + jitter(gen), p.z() - 0.2 * tol));
+    points.push_back(Point(p.x() + jitter(gen), p.y() + 0.05 + jitter(gen), p.z() + 0.02));
+    points.push_back(Point(p.x() + 0.04, p.y() + 0.03, p.z() - 0.03));
+    triangles.push_back({a + 3, a + 4, a + 5});
+  }
+  // Shuffled points, so that the vertex order is unrelated to the places.
+  std::vector<std::size_t> new_index(points.size());
+  std::iota(new_index.begin(), new_index.end(), std::size_t(0));
+  std::shuffle(new_index.begin(), new_index.end(), gen);
+  std::vector<Point> shuffled(points.size());
+  for(std::size_t i = 0; i < points.size(); ++i) shuffled[new_index[i]] = points[i];
+  for(Triangle& t : triangles)
+    for(std::size_t& v : t) v = new_index[v];
+  // Brute force: the pairs of corners of one triangle within the tolerance, (larger, smaller).
+  std::set<std::pair<std::size_t, std::size_t>> pairs;
+  for(const Triangle& t : triangles)
+    for(int i = 0; i < 3; ++i) {
+      const std::size_t u = t[std::size_t(i)], v = t[std::size_t((i + 1) % 3)];
+      if(CGAL::squared_distance(shuffled[u], shuffled[v]) <= tol * tol) pairs.emplace(std::max(u, v), std::min(u, v));
+    }
+  ASSERT_EQ(pairs.size(), 400u);
+  for(const ST::Small_features policy : {ST::Small_features::REFUSE, ST::Small_features::COLLAPSE}) {
+    SCOPED_TRACE(policy == ST::Small_features::REFUSE ? "refuse" : "collapse");
+    std::vector<Triangle> welded = triangles;
+    Decision_recorder recorder;
+    const ST::Snap_report r = ST::snap_vertices(
+      shuffled, welded,
+      ST::parameters::small_features(policy, CGAL::parameters::snapping_tolerance(tol).visitor(std::ref(recorder))));
+    ASSERT_GE(recorder.merges.size(), 100u);
+    for(std::size_t k = 1; k < recorder.merges.size(); ++k)
+      ASSERT_LT(recorder.merges[k - 1].first, recorder.merges[k].first) << k;
+    std::vector<std::size_t> final_vertex(shuffled.size());
+    std::iota(final_vertex.begin(), final_vertex.end(), std::size_t(0));
+    for(const auto& [v, rep] : recorder.merges) final_vertex[v] = rep;
+    if(policy == ST::Small_features::REFUSE) {
+      ASSERT_GE(recorder.refusals.size(), pairs.size());
+      std::set<std::pair<std::size_t, std::size_t>> told;
+      for(std::size_t k = 0; k < pairs.size(); ++k) {
+        const auto& [v, rep, why] = recorder.refusals[k];
+        EXPECT_EQ(why, ST::Refusal_reason::SAME_TRIANGLE);
+        EXPECT_GT(v, rep);
+        told.emplace(v, rep);
+      }
+      EXPECT_EQ(told, pairs);
+      EXPECT_EQ(r.small_features_resolved, 0u);
+    } else {
+      std::size_t resolved = 0;
+      for(const auto& [u, v] : pairs) resolved += final_vertex[u] == final_vertex[v];
+      EXPECT_GT(resolved, 0u);
+      EXPECT_EQ(r.small_features_resolved, resolved);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Per-vertex tolerances (`vertex_tolerance_map`): a pair u, v is within tolerance when
 // |uv| <= min(t_u, t_v).

@@ -212,6 +212,7 @@ public:
     refuse_same_triangle_pairs();
     form_clusters();
     list_ambiguous_sites();
+    number_candidates_by_vertex();
     guard_against_degenerate_and_flipped_triangles();
     apply();
     write_back(triangles);
@@ -348,6 +349,7 @@ private:
     const Candidate_point_map in_soup = CGAL::make_property_map(points_.data());
     tree_ = parallel_ ? std::make_unique<Candidate_tree>(candidates_, in_soup, kernel_, CGAL::Parallel_if_available_tag())
                       : std::make_unique<Candidate_tree>(candidates_, in_soup, kernel_, CGAL::Sequential_tag());
+    number_candidates_in_tree_order();
     // The grid of a dense cluster reads the candidates' points from a vector of their own.
     if(dense_) {
       candidate_points_.reserve(n);
@@ -377,9 +379,49 @@ private:
       for_each_block<CGAL::Sequential_tag>(n, default_block_size, f);
   }
 
+  // From the octree on, until the ambiguous sites are listed, candidate `c` is the `c`-th in the
+  // octree's (Morton) order: the copies of a point, and the neighbours of a candidate in the
+  // tolerance graph, are then close in every array of the graph and the clusters (the rows, the
+  // union-find, the marks), whatever the order of the soup's triangles. No decision depends on
+  // the numbering (the components and the clusters are sets; the members are ordered by
+  // distance, then `Less_xyz_3`; the order of the visits is the lexicographic one); what is told
+  // in an order (the same-triangle refusals, the merges) keeps the order of the vertices.
+  void number_candidates_in_tree_order()
+  {
+    const Uninitialized_vector<std::uint32_t> order = tree_->number_points_in_tree_order();
+    const std::size_t n = order.size();
+    Uninitialized_vector<size_type> by_position(n); // (written whole below)
+    Uninitialized_vector<std::uint32_t> position(n);
+    for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t j = begin; j < end; ++j) {
+        by_position[j] = candidates_[order[j]];
+        position[order[j]] = static_cast<std::uint32_t>(j);
+      }
+    });
+    candidates_.swap(by_position);
+    for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i < end; ++i) lex_order_[i] = position[lex_order_[i]];
+    });
+  }
+
+  // After the ambiguous sites, the candidates in increasing vertex order again, as the guard and
+  // the application go through them; the same-triangle pairs are renumbered with them.
+  void number_candidates_by_vertex()
+  {
+    for(Pair& pr : same_triangle_pairs_) pr = Pair(candidates_[pr.first], candidates_[pr.second]);
+    std::size_t k = 0;
+    for(std::size_t v = 0; v < candidate_of_.size(); ++v)
+      if(candidate_of_[v] != not_candidate) {
+        candidate_of_[v] = static_cast<std::uint32_t>(k);
+        candidates_[k++] = static_cast<size_type>(v);
+      }
+    for(Pair& pr : same_triangle_pairs_) pr = Pair(candidate_of_[pr.first], candidate_of_[pr.second]);
+    Uninitialized_vector<std::uint32_t>().swap(candidate_of_);
+  }
+
   // Pairs of vertices of one triangle within the tolerance: never merged, found from the
-  // triangles, listed in the order of the octree's self-join (Morton order of the first vertex),
-  // once each.
+  // triangles, each as (the candidate of its smaller vertex, that of its larger one), listed in
+  // the Morton order of the first, then by vertex, once each.
   void find_same_triangle_pairs()
   {
     // By blocks of vertices, then of triangles: the pairs are sorted below, so the order in
@@ -402,14 +444,16 @@ private:
           // (the points of the soup, read in the order of its triangles: the octree's copies are
           // the same points, in another order)
           if(tolerances_ != nullptr ? within_pair_tolerance(u, v) : within_squared(point(u), point(v), eps2))
-            found[g].emplace_back(std::min(a, b), std::max(a, b));
+            found[g].emplace_back(u < v ? Pair(a, b) : Pair(b, a)); // the smaller vertex first
         }
     });
     concatenate_in_block_order(found, same_triangle_pairs_);
     const Candidate_tree& tree = *tree_;
     std::sort(same_triangle_pairs_.begin(), same_triangle_pairs_.end(), [&](const Pair& x, const Pair& y) {
       const std::uint64_t cx = tree.morton_code(x.first), cy = tree.morton_code(y.first);
-      return cx < cy || (cx == cy && x < y);
+      if(cx != cy) return cx < cy;
+      return std::make_pair(candidates_[x.first], candidates_[x.second]) <
+             std::make_pair(candidates_[y.first], candidates_[y.second]);
     });
     same_triangle_pairs_.erase(std::unique(same_triangle_pairs_.begin(), same_triangle_pairs_.end()),
                                same_triangle_pairs_.end());
@@ -444,7 +488,24 @@ private:
         for(size_type v : tables_.triangle(t)) mate[v] = value;
     };
     tree_->for_each_neighborhood(eps_, [&](std::size_t c, const std::vector<std::size_t>& found) {
-      if(!collapse_) mark_mates(c, 1);
+      if(!collapse_) {
+#if defined(__GNUC__) || defined(__clang__)
+        // The candidates come in their order (the octree's): the mates of the candidates a few
+        // steps ahead, read in the tables at vertices that are far apart when the triangles come
+        // in no spatial order, are asked for in stages, each reading what an earlier one brought
+        // in (hints; in the callback itself, where GCC keeps them).
+        constexpr std::size_t vertex_ahead = 16, list_ahead = 8, triangle_ahead = 4, mate_ahead = 2;
+        if(c + vertex_ahead < n) tables_.prefetch_vertex(candidates_[c + vertex_ahead]);
+        if(c + list_ahead < n) tables_.prefetch_triangles_around_vertex(candidates_[c + list_ahead]);
+        if(c + triangle_ahead < n)
+          for(size_type t : tables_.triangles_around_vertex(candidates_[c + triangle_ahead]))
+            __builtin_prefetch(&tables_.triangle(t));
+        if(c + mate_ahead < n)
+          for(size_type t : tables_.triangles_around_vertex(candidates_[c + mate_ahead]))
+            for(size_type v : tables_.triangle(t)) __builtin_prefetch(&mate[v]);
+#endif
+        mark_mates(c, 1);
+      }
       if(!row_fits(*row, found.size())) {
         // The first full buffer: the rows so far are in buffer 0, and each row says where it is.
         if(row_buffer_.empty()) row_buffer_.assign(n, 0);
@@ -593,7 +654,7 @@ private:
       Cluster_block& out = results[b];
       const std::size_t end = block_begin[b + 1];
       for(std::size_t k = block_begin[b]; k != end; ++k) {
-        if(!dense_) prefetch_visits(visits, k, end);
+        if(!dense_) prefetch_visits(visits, k, end, *scratch);
         const std::uint32_t rep = visits[k];
         if(assigned_[rep]) continue;
         assigned_[rep] = 1;
@@ -619,29 +680,33 @@ private:
     std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
                      [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
-    Uninitialized_vector<std::uint32_t>().swap(candidate_of_);
     Uninitialized_vector<std::uint32_t>().swap(rank_);
     release_tolerance_graph();
   }
 
   // The visits of the clusters read, for each representative, its row, and for each of its
-  // neighbours whether it is assigned, its vertex and its point: in an exploded soup the copies
-  // of one point are far apart in the candidates' order, and each of these reads missed the
-  // cache. The reads of the visits a few steps ahead are prefetched in stages, each stage reading
-  // what an earlier one brought in (a hint only: nothing is decided on what it reads). At most
-  // `most` neighbours of a visit are prefetched, so a long row costs no more here.
+  // neighbours whether it is assigned, its vertex, its point and its list of triangles in the
+  // tables (whose marks then tell whether it shares a triangle with the cluster): in an exploded
+  // soup the copies of one point are far apart in the candidates' order, and in the tables' when
+  // the triangles come in no spatial order, and each of these reads missed the cache. The reads
+  // of the visits a few steps ahead are prefetched in stages, each stage reading what an earlier
+  // one brought in (a hint only: nothing is decided on what it reads). At most `most` neighbours
+  // of a visit are prefetched, so a long row costs no more here.
 #if defined(__GNUC__) || defined(__clang__)
   // (always inlined: GCC finds a function that only prefetches free of side effects and drops
   // the calls to it)
   __attribute__((always_inline))
 #endif
-  void prefetch_visits(const Uninitialized_vector<std::uint32_t>& visits, std::size_t k, std::size_t end) const
+  void prefetch_visits(const Uninitialized_vector<std::uint32_t>& visits, std::size_t k, std::size_t end,
+                       const Cluster_scratch& scratch) const
   {
 #if defined(__GNUC__) || defined(__clang__)
     const auto row_of = [&](std::uint32_t v) -> const std::uint32_t* {
       return rows_[row_buffer_.empty() ? 0 : row_buffer_[v]].data() + row_start_[v];
     };
-    constexpr std::size_t row_ahead = 24, start_ahead = 12, neighbour_ahead = 6, point_ahead = 3, most = 8;
+    constexpr std::size_t row_ahead = 36, start_ahead = 24, neighbour_ahead = 16, point_ahead = 12, list_ahead = 8,
+                          mark_ahead = 4, most = 8;
+    // (plain loops: a lambda that only prefetches is dropped like such a function)
     if(k + row_ahead < end) {
       const std::uint32_t v = visits[k + row_ahead];
       __builtin_prefetch(&assigned_[v]);
@@ -654,9 +719,11 @@ private:
       const std::uint32_t v = visits[k + start_ahead];
       __builtin_prefetch(row_of(v));
       __builtin_prefetch(&points_[candidates_[v]]);
+      tables_.prefetch_vertex(candidates_[v]);
     }
     if(k + neighbour_ahead < end) {
       const std::uint32_t v = visits[k + neighbour_ahead];
+      tables_.prefetch_triangles_around_vertex(candidates_[v]);
       if(!assigned_[v]) {
         const std::uint32_t* row = row_of(v);
         for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
@@ -669,12 +736,32 @@ private:
       const std::uint32_t v = visits[k + point_ahead];
       if(!assigned_[v]) {
         const std::uint32_t* row = row_of(v);
-        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q)
+        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
           __builtin_prefetch(&points_[candidates_[row[q]]]);
+          tables_.prefetch_vertex(candidates_[row[q]]);
+        }
+      }
+    }
+    if(k + list_ahead < end) {
+      const std::uint32_t v = visits[k + list_ahead];
+      if(!assigned_[v]) {
+        const std::uint32_t* row = row_of(v);
+        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q)
+          tables_.prefetch_triangles_around_vertex(candidates_[row[q]]);
+      }
+    }
+    if(k + mark_ahead < end) {
+      const std::uint32_t v = visits[k + mark_ahead];
+      if(!assigned_[v]) {
+        const std::uint32_t* row = row_of(v);
+        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
+          const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(candidates_[row[q]]);
+          if(around.begin() != around.end()) __builtin_prefetch(&scratch.in_cluster_mark[*around.begin()]);
+        }
       }
     }
 #else
-    (void)visits; (void)k; (void)end;
+    (void)visits; (void)k; (void)end; (void)scratch;
 #endif
   }
 
@@ -1123,7 +1210,17 @@ private:
     }
     const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
     std::vector<char> is_representative(points_.size(), 0);
-    for(size_type v : candidates_) {
+    // (the representatives' points are read at random when the triangles come in no spatial
+    // order: a few merges ahead, they are asked for)
+    constexpr std::size_t ahead = 16;
+    for(std::size_t i = 0, n = candidates_.size(); i < n; ++i) {
+#if defined(__GNUC__) || defined(__clang__)
+      if(i + ahead < n && target_[candidates_[i + ahead]] != none) {
+        __builtin_prefetch(&points_[target_[candidates_[i + ahead]]]);
+        __builtin_prefetch(&is_representative[target_[candidates_[i + ahead]]]);
+      }
+#endif
+      const size_type v = candidates_[i];
       if(target_[v] == none) continue;
       const size_type r = target_[v];
       if(!rebuild) tables_.replace_vertex(v, r);
