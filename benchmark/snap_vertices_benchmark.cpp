@@ -8,7 +8,9 @@
 // - "1M": split 1-to-4 twice (1,206,528 triangles), exploded (every triangle with its own 3
 //   corners);
 // - "100k": split 1-to-4 once (301,632 triangles), the 100,000 triangles of smallest centroid x
-//   (a patch of the bunny with a border of its own), exploded.
+//   (a patch of the bunny with a border of its own), exploded;
+// - "1M_shuffled": the 1M soups with their triangles in a random order (the same for both):
+//   triangles in no spatial order are the worst case of every table the welds read.
 // Each exists un-jittered and jittered: every corner moved independently by a uniform random
 // amount in [-j, j] on each coordinate, j = 1e-6 x diagonal / sqrt(3) (so by at most 1e-6 x the
 // bounding-box diagonal). The tolerance is 1e-5 x the diagonal.
@@ -73,7 +75,7 @@ struct Soups
   double tolerance = 0;                      // 1e-5 x diagonal
 };
 
-enum class Size { one_million, hundred_thousand };
+enum class Size { one_million, hundred_thousand, one_million_shuffled };
 
 Soups make_soups(Size size)
 {
@@ -108,6 +110,22 @@ const Soups& soups(Size size)
     static const Soups big = make_soups(Size::one_million);
     return big;
   }
+  if(size == Size::one_million_shuffled) {
+    static const Soups shuffled = [] {
+      Soups s = soups(Size::one_million);
+      std::vector<std::size_t> order(s.exact.size());
+      for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::shuffle(order.begin(), order.end(), std::mt19937_64(2027));
+      Soups out;
+      out.tolerance = s.tolerance;
+      for(std::size_t i : order) {
+        out.exact.push_back(s.exact[i]);
+        out.jittered.push_back(s.jittered[i]);
+      }
+      return out;
+    }();
+    return shuffled;
+  }
   static const Soups small = make_soups(Size::hundred_thousand);
   return small;
 }
@@ -137,6 +155,7 @@ void BM_exact_weld(benchmark::State& state, Size size)
 }
 BENCHMARK_CAPTURE(BM_exact_weld, 1M, Size::one_million)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_exact_weld, 100k, Size::hundred_thousand)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK_CAPTURE(BM_exact_weld, 1M_shuffled, Size::one_million_shuffled)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_epsilon_weld(benchmark::State& state, Size size)
 {
@@ -172,6 +191,8 @@ void BM_epsilon_weld(benchmark::State& state, Size size)
 }
 BENCHMARK_CAPTURE(BM_epsilon_weld, 1M, Size::one_million)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_epsilon_weld, 100k, Size::hundred_thousand)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK_CAPTURE(BM_epsilon_weld, 1M_shuffled, Size::one_million_shuffled)->Unit(benchmark::kMillisecond)
+  ->Iterations(3);
 
 std::size_t border_edges(const Mesh& mesh)
 {
