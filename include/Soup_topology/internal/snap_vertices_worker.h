@@ -493,16 +493,21 @@ private:
         // The candidates come in their order (the octree's): the mates of the candidates a few
         // steps ahead, read in the tables at vertices that are far apart when the triangles come
         // in no spatial order, are asked for in stages, each reading what an earlier one brought
-        // in (hints; in the callback itself, where GCC keeps them).
-        constexpr std::size_t vertex_ahead = 16, list_ahead = 8, triangle_ahead = 4, mate_ahead = 2;
+        // in (hints; in the callback itself, where GCC keeps them). At most `most` triangles of
+        // a candidate are prefetched, so a vertex of high degree costs no more here.
+        constexpr std::size_t vertex_ahead = 16, list_ahead = 8, triangle_ahead = 4, mate_ahead = 2, most = 8;
         if(c + vertex_ahead < n) tables_.prefetch_vertex(candidates_[c + vertex_ahead]);
         if(c + list_ahead < n) tables_.prefetch_triangles_around_vertex(candidates_[c + list_ahead]);
-        if(c + triangle_ahead < n)
-          for(size_type t : tables_.triangles_around_vertex(candidates_[c + triangle_ahead]))
-            __builtin_prefetch(&tables_.triangle(t));
-        if(c + mate_ahead < n)
-          for(size_type t : tables_.triangles_around_vertex(candidates_[c + mate_ahead]))
-            for(size_type v : tables_.triangle(t)) __builtin_prefetch(&mate[v]);
+        if(c + triangle_ahead < n) {
+          const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(candidates_[c + triangle_ahead]);
+          for(std::size_t k = 0, e = std::min<std::size_t>(around.size(), most); k < e; ++k)
+            __builtin_prefetch(&tables_.triangle(around[k]));
+        }
+        if(c + mate_ahead < n) {
+          const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(candidates_[c + mate_ahead]);
+          for(std::size_t k = 0, e = std::min<std::size_t>(around.size(), most); k < e; ++k)
+            for(size_type v : tables_.triangle(around[k])) __builtin_prefetch(&mate[v]);
+        }
 #endif
         mark_mates(c, 1);
       }
@@ -701,11 +706,18 @@ private:
                        const Cluster_scratch& scratch) const
   {
 #if defined(__GNUC__) || defined(__clang__)
+    constexpr std::uint32_t most = 8;
+    constexpr std::size_t row_ahead = 36, start_ahead = 24, neighbour_ahead = 16, point_ahead = 12, list_ahead = 8,
+                          mark_ahead = 4;
     const auto row_of = [&](std::uint32_t v) -> const std::uint32_t* {
       return rows_[row_buffer_.empty() ? 0 : row_buffer_[v]].data() + row_start_[v];
     };
-    constexpr std::size_t row_ahead = 36, start_ahead = 24, neighbour_ahead = 16, point_ahead = 12, list_ahead = 8,
-                          mark_ahead = 4, most = 8;
+    // the first neighbours of visit `v` (at most `most`; none once `v` is assigned): a row and
+    // its length, read here, prefetched by the plain loops below
+    const auto neighbours_of = [&](std::uint32_t v) -> std::pair<const std::uint32_t*, std::uint32_t> {
+      if(assigned_[v]) return {nullptr, 0u};
+      return {row_of(v), std::min<std::uint32_t>(row_size_[v], most)};
+    };
     // (plain loops: a lambda that only prefetches is dropped like such a function)
     if(k + row_ahead < end) {
       const std::uint32_t v = visits[k + row_ahead];
@@ -724,40 +736,28 @@ private:
     if(k + neighbour_ahead < end) {
       const std::uint32_t v = visits[k + neighbour_ahead];
       tables_.prefetch_triangles_around_vertex(candidates_[v]);
-      if(!assigned_[v]) {
-        const std::uint32_t* row = row_of(v);
-        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
-          __builtin_prefetch(&assigned_[row[q]]);
-          __builtin_prefetch(&candidates_[row[q]]);
-        }
+      const auto [row, e] = neighbours_of(v);
+      for(std::uint32_t q = 0; q < e; ++q) {
+        __builtin_prefetch(&assigned_[row[q]]);
+        __builtin_prefetch(&candidates_[row[q]]);
       }
     }
     if(k + point_ahead < end) {
-      const std::uint32_t v = visits[k + point_ahead];
-      if(!assigned_[v]) {
-        const std::uint32_t* row = row_of(v);
-        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
-          __builtin_prefetch(&points_[candidates_[row[q]]]);
-          tables_.prefetch_vertex(candidates_[row[q]]);
-        }
+      const auto [row, e] = neighbours_of(visits[k + point_ahead]);
+      for(std::uint32_t q = 0; q < e; ++q) {
+        __builtin_prefetch(&points_[candidates_[row[q]]]);
+        tables_.prefetch_vertex(candidates_[row[q]]);
       }
     }
     if(k + list_ahead < end) {
-      const std::uint32_t v = visits[k + list_ahead];
-      if(!assigned_[v]) {
-        const std::uint32_t* row = row_of(v);
-        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q)
-          tables_.prefetch_triangles_around_vertex(candidates_[row[q]]);
-      }
+      const auto [row, e] = neighbours_of(visits[k + list_ahead]);
+      for(std::uint32_t q = 0; q < e; ++q) tables_.prefetch_triangles_around_vertex(candidates_[row[q]]);
     }
     if(k + mark_ahead < end) {
-      const std::uint32_t v = visits[k + mark_ahead];
-      if(!assigned_[v]) {
-        const std::uint32_t* row = row_of(v);
-        for(std::uint32_t q = 0, e = std::min<std::uint32_t>(row_size_[v], most); q < e; ++q) {
-          const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(candidates_[row[q]]);
-          if(around.begin() != around.end()) __builtin_prefetch(&scratch.in_cluster_mark[*around.begin()]);
-        }
+      const auto [row, e] = neighbours_of(visits[k + mark_ahead]);
+      for(std::uint32_t q = 0; q < e; ++q) {
+        const Adjacency_tables::Id_range around = tables_.triangles_around_vertex(candidates_[row[q]]);
+        if(around.begin() != around.end()) __builtin_prefetch(&scratch.in_cluster_mark[*around.begin()]);
       }
     }
 #else
