@@ -10,6 +10,7 @@
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/soup_statistics.h>
+#include <Soup_topology/internal/separate_non_manifold.h>
 
 #include "bounded_run.h"
 #include "test_utilities.h"
@@ -849,6 +850,71 @@ TEST(AdjacencyTables, Issue13FewAndManyEdgesOfAVertexGroupAlike)
   std::vector<Tables::Edge> non_manifold = adj.non_manifold_edges();
   EXPECT_FALSE(non_manifold.empty());
   EXPECT_TRUE(std::is_sorted(non_manifold.begin(), non_manifold.end()));
+}
+
+// The fans of every vertex are walked with the rows of the triangles of the vertices ahead asked
+// for in advance (`for_each_vertex_of_several_fans()`): the vertices found with several fans
+// must be those of the brute force, whatever the order of the triangles and however many
+// vertices have fewer than two triangles between those walked. A grid surface with pinched
+// vertices (two fans each), repeated triangles (non-manifold edges), holes, a fan of 80
+// triangles around one vertex, and unused vertex numbers between the used ones; its triangles
+// in grid order and shuffled. Then the same walk across the edges a predicate links, against
+// the fans of `fans_around_vertex()` with the complementary edges cut.
+TEST(AdjacencyTables, Issue13FansFoundAheadOfTheWalkAsByBruteForce)
+{
+  std::mt19937 rng(1317);
+  const size_type side = 24, spread = 3; // grid vertex (i, j) is vertex spread * (i side + j)
+  auto grid = [&](size_type i, size_type j) { return spread * (i * side + j); };
+  std::vector<Tables::Triangle> tris;
+  for(size_type i = 0; i + 1 < side; ++i)
+    for(size_type j = 0; j + 1 < side; ++j) {
+      if(rng() % 40 == 0) continue; // a hole
+      tris.push_back({grid(i, j), grid(i + 1, j), grid(i + 1, j + 1)});
+      tris.push_back({grid(i, j), grid(i + 1, j + 1), grid(i, j + 1)});
+    }
+  // pinched vertices: a vertex of a corner triangle elsewhere replaced by an interior vertex
+  for(int pinch = 0; pinch < 6; ++pinch) {
+    Tables::Triangle& t = tris[rng() % tris.size()];
+    const size_type v = grid(2 + rng() % (side - 4), 2 + rng() % (side - 4));
+    if(std::find(t.begin(), t.end(), v) == t.end()) t[rng() % 3] = v;
+  }
+  for(int copy = 0; copy < 8; ++copy) tris.push_back(tris[rng() % tris.size()]);
+  const size_type hub = spread * side * side + 1; // a closed fan of 80 triangles (vertex hub)
+  for(size_type k = 0; k < 80; ++k)
+    tris.push_back({hub, hub + 1 + k, hub + 1 + (k + 1) % 80});
+  const std::size_t nv = hub + 81 + 5;
+  for(int order = 0; order < 2; ++order) {
+    SCOPED_TRACE(order == 0 ? "grid order" : "shuffled");
+    if(order == 1) std::shuffle(tris.begin(), tris.end(), rng);
+    const Tables adj(tris, nv);
+    const std::vector<size_type> expected = brute_force(tris, nv).non_manifold_vertices;
+    EXPECT_GE(expected.size(), 3u);
+    EXPECT_EQ(adj.non_manifold_vertices(), expected);
+    EXPECT_EQ(adj.non_manifold_vertices<CGAL::Parallel_if_available_tag>(), expected);
+    // in pieces: every range of vertices gives its own
+    std::vector<size_type> by_ranges;
+    for(std::size_t begin = 0; begin < nv; begin += 37)
+      adj.for_each_vertex_of_several_fans(begin, std::min(nv, begin + 37), [](size_type, int) { return true; },
+                                          [&](size_type v) { by_ranges.push_back(v); });
+    EXPECT_EQ(by_ranges, expected);
+    // across the edges a predicate links: one cut per pair of neighbours, on both sides
+    std::vector<char> cut(3 * tris.size(), 0);
+    for(size_type t = 0; t < tris.size(); ++t)
+      for(int i = 0; i < 3; ++i) {
+        const size_type u = adj.neighbor(t, i);
+        if(u < t || u >= Tables::non_manifold_edge || rng() % 6 != 0) continue;
+        cut[3 * std::size_t(t) + std::size_t(i)] = 1;
+        cut[3 * std::size_t(u) + std::size_t(adj.edge_index(u, tris[t][std::size_t(i)], tris[t][std::size_t((i + 1) % 3)]))] = 1;
+      }
+    std::vector<size_type> several, by_search;
+    adj.for_each_vertex_of_several_fans(0, nv, [&](size_type t, int i) { return cut[3 * std::size_t(t) + std::size_t(i)] == 0; },
+                                        [&](size_type v) { several.push_back(v); });
+    std::vector<std::size_t> fan, stack;
+    for(size_type v = 0; v < nv; ++v)
+      if(adj.degree(v) >= 2 && ST::internal::fans_around_vertex(adj, cut, v, fan, stack) > 1) by_search.push_back(v);
+    EXPECT_GT(by_search.size(), expected.size());
+    EXPECT_EQ(several, by_search);
+  }
 }
 
 TEST(AdjacencyTables, Issue21RepeatedTriangle)

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -229,6 +230,100 @@ public:
     (void)v;
 #endif
   }
+
+  /// asks the processor to bring in the corners and the edge neighbours of triangle `t`. A hint.
+  /// \param t a triangle index, in `[0, number_of_triangles())`
+#if defined(__GNUC__) || defined(__clang__)
+  __attribute__((always_inline))
+#endif
+  void prefetch_triangle(size_type t) const
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(triangles_.data() + t);
+    __builtin_prefetch(neighbors_.data() + 3 * std::size_t(t));
+#else
+    (void)t;
+#endif
+  }
+
+  /// `true` if the triangles around `v` (at least one) form one fan: they are all connected by
+  /// crossing the edges incident to `v` that are manifold and for which `linked(t, i)` is true
+  /// (edge `i` of triangle `t`; `linked` returning `true` always: the manifold edges alone).
+  /// Walked from the first triangle of `v` both ways around `v` (in a fan every triangle has at
+  /// most one such neighbour on each of its two edges at `v`, so the walk is a path or a cycle):
+  /// one fan if it meets every triangle of `v`. Constant memory, linear in the degree of `v`.
+  /// \param v a vertex index, in `[0, number_of_vertices())`
+  /// \param linked a predicate on (triangle, local edge index)
+  template <class Linked>
+  bool is_one_fan(size_type v, const Linked& linked) const
+  {
+    const Id_range around = triangles_around_vertex(v);
+    const std::size_t d = around.size();
+    if(d <= 1) return true;
+    const size_type first = around[0];
+    std::size_t met = 1;
+    const int iv = local_index(first, v);
+    for(int side = 0; side < 2; ++side) {
+      // crossing the edge of t at v whose other end is w
+      size_type t = first;
+      size_type w = vertex(first, side == 0 ? (iv + 1) % 3 : (iv + 2) % 3);
+      for(;;) {
+        const int it = local_index(t, v);
+        const int e = vertex(t, (it + 1) % 3) == w ? it : (it + 2) % 3;
+        const size_type u = neighbor(t, e);
+        if(u >= non_manifold_edge || !linked(t, e)) break;
+        if(u == first) return met == d; // around a closed fan
+        if(++met > d) return false;      // (tables that do not describe fans)
+        const int iu = local_index(u, v);
+        const size_type next = vertex(u, (iu + 1) % 3);
+        w = next == w ? vertex(u, (iu + 2) % 3) : next;
+        t = u;
+      }
+    }
+    return met == d;
+  }
+
+  /// calls `emit(v)` for every vertex `v` of `[begin, end)`, in increasing order, whose triangles
+  /// (two or more) do not form one fan by `is_one_fan(v, linked)`. The lists and the triangles of
+  /// the vertices a few steps ahead are asked for before they are walked (`prefetch_vertex()`,
+  /// `prefetch_triangles_around_vertex()`, `prefetch_triangle()`): a walk waits for each
+  /// triangle's row before it can ask for the next one, which on a soup in random order is a
+  /// cache miss at every step; asked for ahead, the rows of many triangles are on their way at once.
+  template <class Linked, class Emit>
+  void for_each_vertex_of_several_fans(std::size_t begin, std::size_t end, const Linked& linked, const Emit& emit) const
+  {
+    // The vertices to walk (two triangles or more) are queued `in_flight` ahead, their lists asked
+    // for as they are queued; the rows of the triangles of the vertex half-way in the queue are
+    // asked for at every step. (Plain loops: GCC drops a lambda or a function whose only effects
+    // are prefetches. A triangle numbered next to the last one asked for, as in a soup listed in
+    // a spatial order, is most likely in cache already: it is not asked for again.)
+    constexpr std::size_t in_flight = 8, rows_at = in_flight / 2, rows_per_vertex = 8;
+    std::array<size_type, in_flight> queue{};
+    std::size_t first = 0, queued = 0, scout = begin;
+    size_type last_asked = 0;
+    for(;;) {
+      while(queued < in_flight && scout < end) {
+        const auto s = static_cast<size_type>(scout++);
+        if(degree(s) < 2) continue;
+        prefetch_triangles_around_vertex(s);
+        queue[(first + queued++) % in_flight] = s;
+      }
+      if(queued == 0) break;
+      if(queued > rows_at) {
+        const Id_range ahead = triangles_around_vertex(queue[(first + rows_at) % in_flight]);
+        const std::size_t some = std::min<std::size_t>(ahead.size(), rows_per_vertex);
+        for(std::size_t k = 0; k < some; ++k)
+          if(ahead[k] - last_asked + 16 > 32) { // |ahead[k] - last_asked| > 16, in unsigned arithmetic
+            prefetch_triangle(ahead[k]);
+            last_asked = ahead[k];
+          }
+      }
+      const size_type v = queue[first];
+      first = (first + 1) % in_flight;
+      --queued;
+      if(!is_one_fan(v, linked)) emit(v);
+    }
+  }
   /// @}
 
   /// \name The edge-neighbour table
@@ -343,10 +438,8 @@ public:
     std::vector<std::vector<size_type>> blocks(internal::number_of_blocks(n));
     internal::for_each_block<ConcurrencyTag>(n, internal::default_block_size,
                                              [&](std::size_t g, std::size_t begin, std::size_t end) {
-      for(std::size_t i = begin; i < end; ++i) {
-        const auto v = static_cast<size_type>(i);
-        if(degree(v) > 1 && fan_size(v) != degree(v)) blocks[g].push_back(v);
-      }
+      for_each_vertex_of_several_fans(begin, end, [](size_type, int) { return true; },
+                                      [&](size_type v) { blocks[g].push_back(v); });
     });
     std::vector<size_type> result;
     internal::concatenate_in_block_order(blocks, result);
@@ -563,43 +656,6 @@ private:
       if(last - first < 3) return;
       for(const Edge* e = first + 1; e != last; ++e) sets.unite(first->triangle, e->triangle);
     });
-  }
-
-  // The number of triangles reached from the first triangle of v by crossing manifold edges
-  // incident to v, in both directions (the fan of that triangle). Equal to degree(v) exactly when
-  // the triangles of v form one fan.
-  std::size_t fan_size(size_type v) const
-  {
-    const Id_range around = triangles_around_vertex(v);
-    const size_type start = around[0];
-    const std::size_t limit = around.size();
-    // Walks from `start` across its edge `first_edge` (incident to v); returns the number of
-    // triangles met after `start`, and whether the walk came back to `start`.
-    auto walk = [&](int first_edge, bool& closed) {
-      std::size_t count = 0;
-      size_type t = start;
-      int e = first_edge;
-      closed = false;
-      while(count <= limit) {
-        const size_type u = neighbor(t, e);
-        if(u >= non_manifold_edge) return count;
-        if(u == start) { closed = true; return count; }
-        const size_type w = vertex(t, e) == v ? vertex(t, (e + 1) % 3) : vertex(t, e); // the other end
-        const int iv = local_index(u, v);
-        // the edge of u incident to v that is not {v, w}
-        const int crossed = edge_index(u, v, w);
-        e = (crossed == iv) ? (iv + 2) % 3 : iv;
-        t = u;
-        ++count;
-      }
-      return count;
-    };
-    const int iv = local_index(start, v);
-    bool closed = false;
-    const std::size_t forward = walk(iv, closed);
-    if(closed) return forward + 1;
-    const std::size_t backward = walk((iv + 2) % 3, closed);
-    return forward + backward + 1;
   }
 
   void check_vertex(size_type v) const

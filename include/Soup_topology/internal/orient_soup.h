@@ -414,42 +414,12 @@ private:
 
   // --- Step 3: non-manifold vertices -----------------------------------------------------------
 
-  // Whether the triangles around v form one fan: walked from the first of them across the
-  // manifold edges not cut, both ways around v (in a fan every triangle has at most one such
-  // neighbour on each of its two edges at v, so the walk is a path or a cycle); one fan if it
-  // meets every triangle of v. Constant memory, linear in the degree of v.
-  bool is_one_fan(size_type v) const
-  {
-    const Adjacency_tables::Id_range around = tables_->triangles_around_vertex(v);
-    const size_type first = around[0];
-    const std::size_t degree = around.size();
-    std::size_t met = 1;
-    const int iv = tables_->local_index(first, v);
-    for(int side = 0; side < 2; ++side) {
-      // crossing the edge of t at v whose other end is w
-      size_type t = first;
-      size_type w = tables_->vertex(first, side == 0 ? (iv + 1) % 3 : (iv + 2) % 3);
-      for(;;) {
-        const int it = tables_->local_index(t, v);
-        const int e = tables_->vertex(t, (it + 1) % 3) == w ? it : (it + 2) % 3;
-        const size_type u = tables_->neighbor(t, e);
-        if(u >= Adjacency_tables::non_manifold_edge || cut_[3 * std::size_t(t) + std::size_t(e)]) break;
-        if(u == first) return met == degree; // around a closed fan
-        if(++met > degree) return false;     // tables that do not describe fans: leave it to the full search
-        const int iu = tables_->local_index(u, v);
-        const size_type next = tables_->vertex(u, (iu + 1) % 3);
-        w = next == w ? tables_->vertex(u, (iu + 2) % 3) : next;
-        t = u;
-      }
-    }
-    return met == degree;
-  }
-
   // Every vertex gets one point per fan of its triangles (edges shared by three or more
   // triangles and cut edges do not join fans). The fan with the canonically smallest triangle
   // keeps the point; the others get copies appended, in the canonical order of their smallest
   // triangles, vertex after vertex in index order. Which vertices have more than one fan is found
-  // by blocks of vertices (`is_one_fan()`); only those are searched and separated, in order.
+  // by blocks of vertices (`Adjacency_tables::is_one_fan()` across the edges not cut); only those
+  // are searched and separated, in order.
   template <class ConcurrencyTag>
   void separate_fans()
   {
@@ -458,8 +428,9 @@ private:
     const std::size_t vertices = tables_->number_of_vertices();
     std::vector<std::vector<size_type>> split_in_block(number_of_blocks(vertices, block_size));
     for_each_block<ConcurrencyTag>(vertices, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      for(std::size_t v = begin; v != end; ++v)
-        if(tables_->degree(size_type(v)) >= 2 && !is_one_fan(size_type(v))) split_in_block[b].push_back(size_type(v));
+      tables_->for_each_vertex_of_several_fans(
+        begin, end, [&](size_type t, int i) { return !cut_[3 * std::size_t(t) + std::size_t(i)]; },
+        [&](size_type v) { split_in_block[b].push_back(v); });
     });
     std::vector<size_type> several_fans;
     concatenate_in_block_order(split_in_block, several_fans);
