@@ -16,6 +16,7 @@
 //   blocks (the file's bytes never held whole);
 // - BM_index_and_tables: index_triangles + Adjacency_tables on the exploded soup in memory (ours),
 //   triangles in mesh order and shuffled (the worst case for every hash and table);
+// - BM_non_manifold_vertices: the fans around every vertex of the welded soup, in both orders;
 // - BM_read_triangle_soup_and_tables: IO::read_triangle_soup of the binary STL (welded while it
 //   is decoded, the path of the command line) + Adjacency_tables, in both orders;
 // - BM_ours_from_file: the whole of our path from the file: read, read_STL_triangles,
@@ -195,6 +196,29 @@ void BM_index_and_tables(benchmark::State& state, Order order)
 }
 BENCHMARK_CAPTURE(BM_index_and_tables, mesh_order, Order::mesh)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK_CAPTURE(BM_index_and_tables, shuffled, Order::shuffled)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The fans around every vertex (`Adjacency_tables::non_manifold_vertices()`, which the pipeline's
+// report, the orientation's separation and the statistics of the written file run) on the welded
+// soup's tables, in both orders: in random order a walk from triangle to triangle waits for a cache
+// miss at every step unless the rows are asked for ahead (issue 13).
+void BM_non_manifold_vertices(benchmark::State& state, Order order)
+{
+  const Input& in = input();
+  std::vector<Point> points;
+  std::vector<Index_triangle> triangles;
+  ST::index_triangles(order == Order::mesh ? in.soup : in.shuffled, points, triangles);
+  const ST::Adjacency_tables tables(triangles, points.size());
+  std::size_t found = 0;
+  for(auto _ : state) {
+    found = tables.non_manifold_vertices().size();
+    benchmark::DoNotOptimize(found);
+  }
+  set_common_counters(state);
+  state.counters["vertices"] = static_cast<double>(points.size());
+  state.counters["non_manifold_vertices"] = static_cast<double>(found);
+}
+BENCHMARK_CAPTURE(BM_non_manifold_vertices, mesh_order, Order::mesh)->Unit(benchmark::kMillisecond)->Iterations(10);
+BENCHMARK_CAPTURE(BM_non_manifold_vertices, shuffled, Order::shuffled)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 // The path of read_triangle_soup() (and of the command line): the binary STL welded while it is
 // decoded, then the tables.
