@@ -30,6 +30,48 @@
 
 namespace Soup_topology {
 
+namespace internal {
+
+/// Whether a reader of triangles around vertex after vertex should ask for the rows of the
+/// triangles ahead (prefetch). On a soup listed in a spatial order the rows are in cache already
+/// and asking costs time for nothing; in random order every row is a miss that asking in advance
+/// hides. The reader asks during the first 64 vertices of every 1024 and counts the triangles
+/// numbered far (more than 16) from the previous one asked for; it goes on asking for the rest of
+/// those 1024 only if more than an eighth of them were far. A hint: no result depends on it.
+class Read_ahead_switch
+{
+public:
+  bool on() const { return on_; }
+  /// whether `t` is far from the previous triangle of this test; counted during the first part
+  bool far(std::uint32_t t)
+  {
+    const bool is_far = t - last_ + 16 > 32; // |t - last| > 16, in unsigned arithmetic
+    last_ = t;
+    ++checked_;
+    far_ += is_far ? 1 : 0;
+    return is_far;
+  }
+  /// after each vertex
+  void next_vertex()
+  {
+    ++step_;
+    if(step_ == probe) on_ = 8 * far_ > checked_;
+    else if(step_ == window) {
+      step_ = 0;
+      far_ = checked_ = 0;
+      on_ = true;
+    }
+  }
+
+private:
+  static constexpr std::size_t probe = 64, window = 1024;
+  std::size_t step_ = 0, far_ = 0, checked_ = 0;
+  std::uint32_t last_ = 0;
+  bool on_ = true;
+};
+
+} // namespace internal
+
 /// \ingroup PkgSoupTopologyRef
 /// \brief the topology of an indexed triangle soup: for every vertex the triangles around it, and
 /// for every triangle its three edge neighbours.
@@ -294,13 +336,13 @@ public:
   {
     // The vertices to walk (two triangles or more) are queued `in_flight` ahead, their lists asked
     // for as they are queued; the rows of the triangles of the vertex half-way in the queue are
-    // asked for at every step. (Plain loops: GCC drops a lambda or a function whose only effects
-    // are prefetches. A triangle numbered next to the last one asked for, as in a soup listed in
-    // a spatial order, is most likely in cache already: it is not asked for again.)
+    // asked for at every step, as long as they are found far from each other
+    // (`internal::Read_ahead_switch`). (Plain loops: GCC drops a lambda or a function whose only
+    // effects are prefetches.)
     constexpr std::size_t in_flight = 8, rows_at = in_flight / 2, rows_per_vertex = 8;
     std::array<size_type, in_flight> queue{};
     std::size_t first = 0, queued = 0, scout = begin;
-    size_type last_asked = 0;
+    internal::Read_ahead_switch read_ahead;
     for(;;) {
       while(queued < in_flight && scout < end) {
         const auto s = static_cast<size_type>(scout++);
@@ -309,15 +351,13 @@ public:
         queue[(first + queued++) % in_flight] = s;
       }
       if(queued == 0) break;
-      if(queued > rows_at) {
+      if(read_ahead.on() && queued > rows_at) {
         const Id_range ahead = triangles_around_vertex(queue[(first + rows_at) % in_flight]);
         const std::size_t some = std::min<std::size_t>(ahead.size(), rows_per_vertex);
         for(std::size_t k = 0; k < some; ++k)
-          if(ahead[k] - last_asked + 16 > 32) { // |ahead[k] - last_asked| > 16, in unsigned arithmetic
-            prefetch_triangle(ahead[k]);
-            last_asked = ahead[k];
-          }
+          if(read_ahead.far(ahead[k])) prefetch_triangle(ahead[k]);
       }
+      read_ahead.next_vertex();
       const size_type v = queue[first];
       first = (first + 1) % in_flight;
       --queued;
@@ -699,7 +739,22 @@ private:
     std::vector<size_type> mark;  // mark[b] == a + 1: b has a bucket in the pass of a (long lists only)
     std::vector<size_type> slot;  // the bucket of b, valid when marked
     std::vector<size_type> others, count, cursor;
+    // (the rows of the triangles of the vertices ahead asked for while they are found far from
+    // each other, as in `for_each_vertex_of_several_fans()`: on triangles in random order every
+    // row is a miss)
+    constexpr size_type lists_ahead = 16, rows_ahead = 8, rows_per_vertex = 8;
+    internal::Read_ahead_switch read_ahead;
     for(size_type a = 0; a < nv; ++a) {
+      if(read_ahead.on()) {
+        if(a + lists_ahead < nv) prefetch_triangles_around_vertex(a + lists_ahead);
+        if(a + rows_ahead < nv) {
+          const Id_range ahead = triangles_around_vertex(a + rows_ahead);
+          const std::size_t some = std::min<std::size_t>(ahead.size(), rows_per_vertex);
+          for(std::size_t k = 0; k < some; ++k)
+            if(read_ahead.far(ahead[k])) prefetch_triangle(ahead[k]);
+        }
+      }
+      read_ahead.next_vertex();
       const Id_range around = triangles_around_vertex(a);
       if(around.empty()) continue;
       ends.clear();
