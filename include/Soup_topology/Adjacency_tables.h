@@ -327,10 +327,12 @@ public:
 
   /// calls `emit(v)` for every vertex `v` of `[begin, end)`, in increasing order, whose triangles
   /// (two or more) do not form one fan by `is_one_fan(v, linked)`. The lists and the triangles of
-  /// the vertices a few steps ahead are asked for before they are walked (`prefetch_vertex()`,
-  /// `prefetch_triangles_around_vertex()`, `prefetch_triangle()`): a walk waits for each
+  /// the vertices a few steps ahead are asked for before they are walked
+  /// (`prefetch_triangles_around_vertex()`, `prefetch_triangle()`): a walk waits for each
   /// triangle's row before it can ask for the next one, which on a soup in random order is a
-  /// cache miss at every step; asked for ahead, the rows of many triangles are on their way at once.
+  /// cache miss at every step; asked for ahead, the rows of many triangles are on their way at
+  /// once. (On a soup in spatial order the rows are in cache already: they are asked for only
+  /// while they are found far apart, `internal::Read_ahead_switch`.)
   template <class Linked, class Emit>
   void for_each_vertex_of_several_fans(std::size_t begin, std::size_t end, const Linked& linked, const Emit& emit) const
   {
