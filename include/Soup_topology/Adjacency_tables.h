@@ -42,7 +42,8 @@ class Read_ahead_switch
 {
 public:
   bool on() const { return on_; }
-  /// whether `t` is far from the previous triangle of this test; counted during the first part
+  /// whether `t` is far from the triangle passed before it; every call is counted, and the counts
+  /// of the first `probe` vertices of a window decide (`next_vertex()`)
   bool far(std::uint32_t t)
   {
     const bool is_far = t - last_ + 16 > 32; // |t - last| > 16, in unsigned arithmetic
