@@ -96,6 +96,13 @@ enum class Candidates { COUNT_WHILE_SEARCHING, COUNT_FIRST };
 
 /// the search of `nearest_border_elements()`: the border vertices in an octree, the answers so
 /// far, and the number of candidates examined.
+///
+/// The border vertices are numbered in the tree's (Morton) order, not in the order of `border`:
+/// a "position" below is that number. The answers, the vertices and the points of nearby border
+/// vertices are then near each other in memory too, whatever the order of the soup (the answers
+/// in the order of `border` were one random access each per candidate). `nearest()` and
+/// `search_subset()` speak of positions; `nearest_in_border_order()` gives the answers in the
+/// order of `border`.
 template <class Geom_traits>
 class Nearest_border_search
 {
@@ -113,13 +120,17 @@ public:
   Nearest_border_search(const std::vector<Point>& points, const Adjacency_tables& tables,
                         const std::vector<std::size_t>& border, const Geom_traits& gt,
                         ConcurrencyTag tag = ConcurrencyTag())
-    : points_(points), tables_(tables), border_(border), gt_(gt),
+    : tables_(tables), number_of_border_vertices_(border.size()), gt_(gt),
       squared_distance_(gt.compute_squared_distance_3_object()), nearest_(border.size())
   {
     tree_.emplace(border,
                   parameters::bucket_capacity(border_bucket_capacity,
                                               CGAL::parameters::geom_traits(gt).point_map(CGAL::make_property_map(points.data()))),
                   tag);
+    border_index_at_ = tree_->number_points_in_tree_order();
+    vertex_at_.resize(border.size());
+    for(std::size_t p = 0; p < border.size(); ++p)
+      vertex_at_[p] = static_cast<Adjacency_tables::size_type>(border[border_index_at_[p]]);
   }
 
   /// the bucket capacity of the octree of the border vertices: larger than the default, as the
@@ -127,7 +138,23 @@ public:
   /// from one leaf).
   static constexpr std::size_t border_bucket_capacity = 32;
 
+  /// the answers so far, by position
   std::vector<Nearest_border_element>& nearest() { return nearest_; }
+
+  /// the answers in the order of `border`; the search is over (its tree and its lists are freed
+  /// first, so that the copy does not raise the peak)
+  std::vector<Nearest_border_element> nearest_in_border_order()
+  {
+    tree_.reset();
+    Uninitialized_vector<Adjacency_tables::Edge>().swap(border_edges_);
+    Uninitialized_vector<std::array<Adjacency_tables::size_type, 2>>().swap(border_edge_ends_);
+    Uninitialized_vector<Adjacency_tables::size_type>().swap(border_edge_apex_);
+    Uninitialized_vector<Adjacency_tables::size_type>().swap(vertex_at_);
+    std::vector<Nearest_border_element> out(nearest_.size());
+    for(std::size_t p = 0; p < nearest_.size(); ++p) out[border_index_at_[p]] = nearest_[p];
+    std::vector<Nearest_border_element>().swap(nearest_);
+    return out;
+  }
 
   /// every border vertex's nearest element within `radius`: the self-join of the border
   /// vertices, then the segment queries of all the border edges at once (their ends are
@@ -154,7 +181,7 @@ public:
     if(!count_while_searching) {
       // Counted by blocks (in parallel with `Parallel_tag`), then checked: the budget is
       // exceeded for the same total as when counted one by one.
-      const std::size_t n = border_.size(), m = border_edge_ends_.size();
+      const std::size_t n = number_of_border_vertices_, m = border_edge_ends_.size();
       std::vector<std::size_t> counts(number_of_blocks(n + m), 0);
       for_each_block<ConcurrencyTag>(n + m, default_block_size, [&](std::size_t g, std::size_t begin, std::size_t end) {
         for(std::size_t i = begin; i < end; ++i)
@@ -172,7 +199,7 @@ public:
       std::atomic<std::size_t> examined(examined_);
       const auto count = [&](std::size_t n) {
         if(count_while_searching)
-          check_gap_candidate_budget(examined.fetch_add(n, std::memory_order_relaxed) + n, border_.size());
+          check_gap_candidate_budget(examined.fetch_add(n, std::memory_order_relaxed) + n, number_of_border_vertices_);
       };
       tree_->template for_each_neighborhood_concurrently<ConcurrencyTag>(
         r, [&](std::size_t k, const std::vector<std::size_t>& near) {
@@ -185,7 +212,7 @@ public:
       tree_->template for_each_segment_neighborhood_concurrently<ConcurrencyTag>(
         border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
           count(near.size());
-          for_each_edge_distance(border_edges_[e], near, [](std::size_t m) { return m; },
+          for_each_edge_distance(e, near, [](std::size_t m) { return m; },
                                  [&](std::size_t k, double d) {
                                    if(!(d < vertex_distance[k])) return;
                                    const std::lock_guard<std::mutex> hold(locks[k % locks.size()]);
@@ -200,13 +227,13 @@ public:
       }, Neighborhood_order::TREE);
       tree_->for_each_segment_neighborhood(border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near) {
         if(count_while_searching) count_examined(near.size());
-        offer_edge(border_edges_[e], near, [](std::size_t m) { return m; });
+        offer_edge(e, near, [](std::size_t m) { return m; });
       }, Neighborhood_order::TREE);
     }
   }
 
-  /// the nearest element within `radius` of the border vertices `subset` (indices into
-  /// `border`, increasing) only, their earlier answers forgotten: one radius query per vertex of
+  /// the nearest element within `radius` of the border vertices `subset` (positions,
+  /// increasing) only, their earlier answers forgotten: one radius query per vertex of
   /// the subset, and one segment query per border edge over an octree of the subset. The
   /// candidates are counted (and the budget checked) before any is listed in order or examined.
   void search_subset(const std::vector<std::size_t>& subset, double radius)
@@ -218,11 +245,8 @@ public:
     subset_points.reserve(subset.size());
     for(std::size_t k : subset) subset_points.push_back(border_point(k));
     const Subset_tree subset_tree(subset_points, CGAL::Identity_property_map<Point>(), gt_);
-    for(const Adjacency_tables::Edge& edge : border_edges_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
-      count_examined(subset_tree.number_of_vertices_near_segment(
-        points_[tr[static_cast<std::size_t>(edge.index)]], points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]], r));
-    }
+    for(const std::array<Adjacency_tables::size_type, 2>& ends : border_edge_ends_)
+      count_examined(subset_tree.number_of_vertices_near_segment(border_point(ends[0]), border_point(ends[1]), r));
     std::vector<std::size_t> near;
     for(std::size_t k : subset) {
       nearest_[k] = Nearest_border_element();
@@ -234,76 +258,92 @@ public:
   }
 
 private:
-  // the point of border vertex k (index into `border`), as the tree holds it
+  // the point of the border vertex at position k, as the tree holds it
   const Point& border_point(std::size_t k) const { return tree_->point(k); }
 
   void count_examined(std::size_t n)
   {
     examined_ += n;
-    check_gap_candidate_budget(examined_, border_.size());
+    check_gap_candidate_budget(examined_, number_of_border_vertices_);
   }
 
-  // The vertices first, the nearest one and among equally near ones the smallest index.
+  // The vertices first, the nearest one and among equally near ones the smallest index. Whether
+  // the two share a triangle (random accesses to the tables) is asked only of a candidate that
+  // would replace the answer: the least candidate that shares none is kept all the same.
   void offer_vertex(std::size_t k, std::size_t j)
   {
-    const std::size_t v = border_[k];
-    const std::size_t w = border_[j];
-    if(w == v || share_a_triangle(tables_, v, w)) return;
+    if(j == k) return;
     const double d = std::sqrt(CGAL::to_double(squared_distance_(border_point(k), border_point(j))));
+    const std::size_t w = vertex_at_[j];
     Nearest_border_element& best = nearest_[k];
-    if(d < best.distance || (d == best.distance && w < best.vertex)) {
-      best.distance = d;
-      best.vertex = w;
-    }
+    if(!(d < best.distance || (d == best.distance && w < best.vertex))) return;
+    if(share_a_triangle(tables_, vertex_at_[k], w)) return;
+    best.distance = d;
+    best.vertex = w;
   }
 
-  // The border edges in the order of their triangles, and their ends as indices into `border`.
+  // The border edges in the order of the positions of their first ends (then of their
+  // triangles): the order in which the segment queries visit them, so that what a query reads
+  // of its edge lies next to what the one before read. For each, its ends as positions and the
+  // vertex of its triangle opposite to it: what the searches need, without the tables.
   void list_border_edges()
   {
     // (read only at the ends of border edges, which are border vertices: all written)
-    Uninitialized_vector<std::size_t> border_index(tables_.number_of_vertices());
-    for(std::size_t k = 0; k < border_.size(); ++k) border_index[border_[k]] = k;
-    border_edges_.reserve(tables_.number_of_border_edges());
-    border_edge_ends_.reserve(tables_.number_of_border_edges());
-    for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
-      const auto tt = static_cast<Adjacency_tables::size_type>(t);
-      const Adjacency_tables::Triangle& tr = tables_.triangle(tt);
-      for(int i = 0; i < 3; ++i) {
-        if(!tables_.is_border_edge(tt, i)) continue;
-        border_edges_.push_back(Adjacency_tables::Edge{tt, i});
-        border_edge_ends_.push_back({border_index[tr[static_cast<std::size_t>(i)]],
-                                     border_index[tr[static_cast<std::size_t>((i + 1) % 3)]]});
+    Uninitialized_vector<Adjacency_tables::size_type> border_index(tables_.number_of_vertices());
+    for(std::size_t p = 0; p < vertex_at_.size(); ++p)
+      border_index[vertex_at_[p]] = static_cast<Adjacency_tables::size_type>(p);
+    // a counting sort by first end: the edges of each position, then their places
+    std::vector<Adjacency_tables::size_type> first(vertex_at_.size() + 1, 0);
+    const auto for_each_border_edge = [&](const auto& f) {
+      for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
+        const auto tt = static_cast<Adjacency_tables::size_type>(t);
+        for(int i = 0; i < 3; ++i)
+          if(tables_.is_border_edge(tt, i)) f(tt, i, tables_.triangle(tt));
       }
-    }
+    };
+    for_each_border_edge([&](Adjacency_tables::size_type, int i, const Adjacency_tables::Triangle& tr) {
+      ++first[border_index[tr[static_cast<std::size_t>(i)]] + 1];
+    });
+    for(std::size_t p = 1; p < first.size(); ++p) first[p] += first[p - 1];
+    const std::size_t m = first.back();
+    border_edges_.resize(m);
+    border_edge_ends_.resize(m);
+    border_edge_apex_.resize(m);
+    for_each_border_edge([&](Adjacency_tables::size_type t, int i, const Adjacency_tables::Triangle& tr) {
+      const Adjacency_tables::size_type a = border_index[tr[static_cast<std::size_t>(i)]];
+      const std::size_t e = first[a]++;
+      border_edges_[e] = Adjacency_tables::Edge{t, i};
+      border_edge_ends_[e] = {a, border_index[tr[static_cast<std::size_t>((i + 1) % 3)]]};
+      border_edge_apex_[e] = tr[static_cast<std::size_t>((i + 2) % 3)];
+    });
   }
 
   // Then the border edges: an edge replaces the answer only if it is strictly nearer, or as near
   // as an edge earlier in the order of the triangles (a vertex at the same distance as an edge
   // is preferred, its end point usually; among equally near edges the first one): the answer
   // does not depend on the order in which the edges are offered. An edge shares a triangle with
-  // a vertex when its (only) triangle contains the vertex. `near` lists vertices found near the
-  // edge, `to_border(m)` their indices into `border`.
-  template <class To_border>
-  void offer_edge(const Adjacency_tables::Edge& edge, const std::vector<std::size_t>& near, const To_border& to_border)
+  // a vertex when its (only) triangle contains the vertex. `e` is the edge's place in the list,
+  // `near` lists vertices found near it, `to_position(m)` their positions.
+  template <class To_position>
+  void offer_edge(std::size_t e, const std::vector<std::size_t>& near, const To_position& to_position)
   {
-    for_each_edge_distance(edge, near, to_border, [&](std::size_t k, double d) { offer_edge_at(k, d, edge); });
+    for_each_edge_distance(e, near, to_position, [&](std::size_t k, double d) { offer_edge_at(k, d, border_edges_[e]); });
   }
 
   // `offer(k, d)` for every vertex of `near` that is not a corner of the (only) triangle of the
-  // border edge `edge`, `k` its index into `border`, `d` its distance to the edge.
-  template <class To_border, class Offer>
-  void for_each_edge_distance(const Adjacency_tables::Edge& edge, const std::vector<std::size_t>& near,
-                              const To_border& to_border, const Offer& offer) const
+  // border edge `e` (its place in the list), `k` its position, `d` its distance to the edge.
+  template <class To_position, class Offer>
+  void for_each_edge_distance(std::size_t e, const std::vector<std::size_t>& near, const To_position& to_position,
+                              const Offer& offer) const
   {
     if(near.empty()) return;
-    const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
-    const Point& a = points_[tr[static_cast<std::size_t>(edge.index)]];
-    const Point& b = points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]];
-    const auto s = gt_.construct_segment_3_object()(a, b);
+    const std::array<Adjacency_tables::size_type, 2>& ends = border_edge_ends_[e];
+    const std::size_t u = vertex_at_[ends[0]], w = vertex_at_[ends[1]], apex = border_edge_apex_[e];
+    const auto s = gt_.construct_segment_3_object()(border_point(ends[0]), border_point(ends[1]));
     for(std::size_t m : near) {
-      const std::size_t k = to_border(m);
-      const std::size_t v = border_[k];
-      if(tr[0] == v || tr[1] == v || tr[2] == v) continue;
+      const std::size_t k = to_position(m);
+      const std::size_t v = vertex_at_[k];
+      if(v == u || v == w || v == apex) continue;
       offer(k, std::sqrt(CGAL::to_double(squared_distance_(border_point(k), s))));
     }
   }
@@ -320,29 +360,31 @@ private:
   }
 
   // The segment query of every border edge over `tree`, which holds the points of the vertices
-  // `ks` (indices into `border`), in that order (the candidates counted already).
+  // at the positions `ks`, in that order (the candidates counted already).
   void search_edges(const Subset_tree& tree, const std::vector<std::size_t>& ks, const FT& r)
   {
     std::vector<std::size_t> near;
-    for(const Adjacency_tables::Edge& edge : border_edges_) {
-      const Adjacency_tables::Triangle& tr = tables_.triangle(edge.triangle);
+    for(std::size_t e = 0; e < border_edges_.size(); ++e) {
       near.clear();
-      tree.vertices_near_segment(points_[tr[static_cast<std::size_t>(edge.index)]],
-                                 points_[tr[static_cast<std::size_t>((edge.index + 1) % 3)]], r, std::back_inserter(near));
-      offer_edge(edge, near, [&ks](std::size_t m) { return ks[m]; });
+      tree.vertices_near_segment(border_point(border_edge_ends_[e][0]), border_point(border_edge_ends_[e][1]), r,
+                                 std::back_inserter(near));
+      offer_edge(e, near, [&ks](std::size_t m) { return ks[m]; });
     }
   }
 
-  const std::vector<Point>& points_;
   const Adjacency_tables& tables_;
-  const std::vector<std::size_t>& border_;
+  const std::size_t number_of_border_vertices_;
   const Geom_traits& gt_;
   typename Geom_traits::Compute_squared_distance_3 squared_distance_;
   std::optional<Tree> tree_;
-  std::vector<Nearest_border_element> nearest_;
+  Uninitialized_vector<std::uint32_t> border_index_at_;         // position -> index into `border`
+  Uninitialized_vector<Adjacency_tables::size_type> vertex_at_; // position -> vertex
+  std::vector<Nearest_border_element> nearest_;                 // by position
   // (`Uninitialized_vector`s: their large blocks come in huge pages)
-  Uninitialized_vector<Adjacency_tables::Edge> border_edges_;         // in the order of their triangles
-  Uninitialized_vector<std::array<std::size_t, 2>> border_edge_ends_; // their ends, indices into `border`
+  // (the border edges in the order of `list_border_edges()`)
+  Uninitialized_vector<Adjacency_tables::Edge> border_edges_;                          // the edges
+  Uninitialized_vector<std::array<Adjacency_tables::size_type, 2>> border_edge_ends_; // their ends, positions
+  Uninitialized_vector<Adjacency_tables::size_type> border_edge_apex_;                // their opposite vertices
   std::size_t examined_ = 0;
 };
 
@@ -384,7 +426,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   search.template search_all<Tag>(first_radius, Candidates::COUNT_WHILE_SEARCHING);
   // Relative rounding of a distance evaluated in double is a few units in the last place.
   const double decided_below = first_radius * (1 - 1e-9);
-  std::vector<std::size_t> undecided;
+  std::vector<std::size_t> undecided; // positions in the search's order
   for(std::size_t k = 0; k < border.size(); ++k)
     if(!(search.nearest()[k].distance < decided_below)) undecided.push_back(k);
   if(2 * undecided.size() > border.size()) {
@@ -393,7 +435,7 @@ std::vector<Nearest_border_element> nearest_border_elements(const std::vector<ty
   }
   else if(!undecided.empty())
     search.search_subset(undecided, radius);
-  return std::move(search.nearest());
+  return search.nearest_in_border_order();
 }
 
 /// the shortest edge and the smallest height of a triangle, in double, and whether its corners
