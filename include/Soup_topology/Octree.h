@@ -777,8 +777,17 @@ private:
   {
     if(!in_box(k, q.box_lo, q.box_hi))
       return false;
+    return is_near_segment_in_box(coords(k), k, q, seg, r2, compare_sq);
+  }
+
+  // the same for the point stored at `k`, whose approximate coordinates `c` lie in the box of
+  // the query (tested by the caller)
+  bool is_near_segment_in_box(const std::array<double, 3>& c, std::uint32_t k, const Segment_query& q,
+                              const Segment_3& seg, const FT& r2,
+                              typename Geom_traits::Compare_squared_distance_3& compare_sq) const
+  {
     double scale = 0;
-    const double d2 = point_segment_squared_distance(k, q.s, scale);
+    const double d2 = point_segment_squared_distance(c, q.s, scale);
     if(!(d2 <= q.bound2))
       return false;
     // with double coordinates, `d2` and `scale` are those of `surely_within_segment(coords(k),
@@ -1022,7 +1031,8 @@ private:
             const Segment_3 seg = gt_.construct_segment_3_object()(points_[k], b);
             for(const Shared_candidate& c : scratch.candidates)
               if(c.c[0] >= q.box_lo[0] && c.c[0] <= q.box_hi[0] && c.c[1] >= q.box_lo[1] && c.c[1] <= q.box_hi[1] &&
-                 c.c[2] >= q.box_lo[2] && c.c[2] <= q.box_hi[2] && is_near_segment(c.position, q, seg, r2, compare_sq))
+                 c.c[2] >= q.box_lo[2] && c.c[2] <= q.box_hi[2] &&
+                 is_near_segment_in_box(c.c, c.position, q, seg, r2, compare_sq))
                 near.push_back(ids_[c.position]);
           }
           else
@@ -1714,7 +1724,12 @@ private:
   // largest absolute coordinate difference of the computation (of `p - a` and of the direction)
   double point_segment_squared_distance(std::uint32_t k, const Segment_approx& s, double& scale) const
   {
-    const std::array<double, 3> p = coords(k);
+    return point_segment_squared_distance(coords(k), s, scale);
+  }
+
+  // the same for the approximate coordinates `p` of a stored point
+  static double point_segment_squared_distance(const std::array<double, 3>& p, const Segment_approx& s, double& scale)
+  {
     const double v[3] = {p[0] - s.a[0], p[1] - s.a[1], p[2] - s.a[2]};
     scale = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2]), std::abs(s.d[0]), std::abs(s.d[1]), std::abs(s.d[2])});
     double t = 0;
