@@ -431,9 +431,18 @@ public:
   /// leaf whose union holds a crowd, are queried one by one, each from the smallest box around the
   /// leaf of its first end that holds the segment grown by the radius, not from the root. The
   /// decisions are the same as in `vertices_near_segment()`, so are the answers.
+  ///
+  /// A callback callable as `callback(s, near, squared_distances)` also receives, for each point
+  /// `near[i]`, the squared distance from it to the segment that the double filter computed to
+  /// decide it (`squared_distances[i]`; NaN where the query computed none). With coordinates
+  /// stored as `double` it is the squared distance of the exact point to the segment between the
+  /// exact ends, evaluated in double: its square root is within a few units in the last place of
+  /// (length + distance) of the exact distance, so a caller that leaves a point out by it must
+  /// keep a margin of that size.
   /// \tparam SegmentRange a random-access range whose elements `e` give the ends as `e[0]`
   ///         and `e[1]` (e.g. `std::vector<std::array<std::size_t, 2>>`)
-  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`, or
+  ///         with a third argument `const std::vector<double>&`
   /// \param segments the segments, by the indices of their ends
   /// \param radius the largest distance from a segment
   /// \param callback called once per segment
@@ -497,7 +506,7 @@ public:
   /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB) or
   ///         `CGAL::Parallel_if_available_tag`
   /// \tparam SegmentRange as for `for_each_segment_neighborhood()`
-  /// \tparam Callback callable as `callback(std::size_t, const std::vector<std::size_t>&)`
+  /// \tparam Callback as for `for_each_segment_neighborhood()` (two or three arguments)
   /// \param segments the segments, by the indices of their ends
   /// \param radius the largest distance from a segment
   /// \param callback called once per segment
@@ -777,17 +786,19 @@ private:
   {
     if(!in_box(k, q.box_lo, q.box_hi))
       return false;
-    return is_near_segment_in_box(coords(k), k, q, seg, r2, compare_sq);
+    double d2 = 0;
+    return is_near_segment_in_box(coords(k), k, q, seg, r2, compare_sq, d2);
   }
 
   // the same for the point stored at `k`, whose approximate coordinates `c` lie in the box of
-  // the query (tested by the caller)
+  // the query (tested by the caller); `d2` receives the squared distance computed in double
+  // from `c` to the approximate segment
   bool is_near_segment_in_box(const std::array<double, 3>& c, std::uint32_t k, const Segment_query& q,
                               const Segment_3& seg, const FT& r2,
-                              typename Geom_traits::Compare_squared_distance_3& compare_sq) const
+                              typename Geom_traits::Compare_squared_distance_3& compare_sq, double& d2) const
   {
     double scale = 0;
-    const double d2 = point_segment_squared_distance(c, q.s, scale);
+    d2 = point_segment_squared_distance(c, q.s, scale);
     if(!(d2 <= q.bound2))
       return false;
     // with double coordinates, `d2` and `scale` are those of `surely_within_segment(coords(k),
@@ -960,6 +971,7 @@ private:
     std::vector<char> shared;                           // whether a query takes the shared candidates
     std::vector<Shared_candidate> candidates;           // the points in the shared box
     std::vector<std::size_t> near;                      // the answer of one segment
+    std::vector<double> near_squared_distances;         // their estimates, if the callback takes them
   };
 
   // The queries of the segments whose first ends lie in the leaf `nd` (frame `f`). The segments
@@ -1014,12 +1026,16 @@ private:
     };
     typename Geom_traits::Compare_squared_distance_3 compare_sq = gt_.compare_squared_distance_3_object();
     std::vector<std::size_t>& near = scratch.near;
+    std::vector<double>& near_d2 = scratch.near_squared_distances;
+    constexpr bool with_distances = takes_squared_distances<Callback>();
+    const double unknown = std::numeric_limits<double>::quiet_NaN();
     std::size_t query = 0;
     for(std::uint32_t k = nd.begin; k != nd.end; ++k)
       for(std::size_t j = by_first.bucket[k]; j != by_first.bucket[k + 1]; ++j)
       {
         const std::uint32_t s = by_first.order[j];
         near.clear();
+        near_d2.clear();
         const Point_3& b = points_[by_first.second_end[s]];
         if(gt_.equal_3_object()(points_[k], b))
           vertices_near_point(b, radius, std::back_inserter(near));
@@ -1029,20 +1045,58 @@ private:
           {
             const Segment_query& q = scratch.queries[query];
             const Segment_3 seg = gt_.construct_segment_3_object()(points_[k], b);
+            double d2 = 0;
             for(const Shared_candidate& c : scratch.candidates)
               if(c.c[0] >= q.box_lo[0] && c.c[0] <= q.box_hi[0] && c.c[1] >= q.box_lo[1] && c.c[1] <= q.box_hi[1] &&
                  c.c[2] >= q.box_lo[2] && c.c[2] <= q.box_hi[2] &&
-                 is_near_segment_in_box(c.c, c.position, q, seg, r2, compare_sq))
+                 is_near_segment_in_box(c.c, c.position, q, seg, r2, compare_sq, d2))
+              {
                 near.push_back(ids_[c.position]);
+                if constexpr(with_distances)
+                  near_d2.push_back(d2);
+              }
           }
           else
             scan_near_segment(points_[k], b, radius, strategy_, smallest_box_around, near);
           ++query;
+        }
+        if constexpr(with_distances)
+        {
+          near_d2.resize(near.size(), unknown); // (the queries that computed none)
+          if(order == Neighborhood_order::INCREASING)
+            sort_with_distances(near, near_d2);
+          callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near),
+                   static_cast<const std::vector<double>&>(near_d2));
+        }
+        else
+        {
           if(order == Neighborhood_order::INCREASING)
             std::sort(near.begin(), near.end());
+          callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
         }
-        callback(std::size_t(s), static_cast<const std::vector<std::size_t>&>(near));
       }
+  }
+
+  // whether a callback of the segment joins takes the estimates of the squared distances
+  template <typename Callback>
+  static constexpr bool takes_squared_distances()
+  {
+    return std::is_invocable<Callback&, std::size_t, const std::vector<std::size_t>&,
+                             const std::vector<double>&>::value;
+  }
+
+  // sorts `near` increasingly, `d2` along with it
+  static void sort_with_distances(std::vector<std::size_t>& near, std::vector<double>& d2)
+  {
+    std::vector<std::pair<std::size_t, double>> both(near.size());
+    for(std::size_t i = 0; i < near.size(); ++i)
+      both[i] = {near[i], d2[i]};
+    std::sort(both.begin(), both.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for(std::size_t i = 0; i < near.size(); ++i)
+    {
+      near[i] = both[i].first;
+      d2[i] = both[i].second;
+    }
   }
 
   // the most points the short segments of one leaf test one by one: beyond it they are queried alone
