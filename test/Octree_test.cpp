@@ -797,7 +797,8 @@ std::size_t check_segment_join(const std::vector<Xyz>& xyz, std::size_t capacity
             if(std::isnan(d2[i]))
               continue;
             ++estimated;
-            const double kernel = std::sqrt(CGAL::to_double(CGAL::squared_distance(pts[near[i]], K().construct_segment_3_object()(a, b))));
+            const typename K::Segment_3 segment(a, b);
+            const double kernel = std::sqrt(CGAL::to_double(CGAL::squared_distance(pts[near[i]], segment)));
             EXPECT_LE(std::abs(std::sqrt(d2[i]) - kernel), 1e-13 * (length + kernel))
               << "segment " << s << " radius " << r << ", point " << near[i];
           }

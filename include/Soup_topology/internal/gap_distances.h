@@ -210,7 +210,8 @@ public:
       for(std::size_t k = 0; k < nearest_.size(); ++k) vertex_distance[k] = nearest_[k].distance;
       std::array<std::mutex, 256> locks;
       tree_->template for_each_segment_neighborhood_concurrently<ConcurrencyTag>(
-        border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near, const std::vector<double>& near_d2) {
+        border_edge_ends_, r,
+        [&](std::size_t e, const std::vector<std::size_t>& near, const std::vector<double>& near_d2) {
           count(near.size());
           for_each_edge_distance(e, near, &near_d2, [](std::size_t m) { return m; },
                                  [&](std::size_t k) { return vertex_distance[k]; },
@@ -227,7 +228,8 @@ public:
         for(std::size_t j : near) offer_vertex(k, j);
       }, Neighborhood_order::TREE);
       tree_->for_each_segment_neighborhood(
-        border_edge_ends_, r, [&](std::size_t e, const std::vector<std::size_t>& near, const std::vector<double>& near_d2) {
+        border_edge_ends_, r,
+        [&](std::size_t e, const std::vector<std::size_t>& near, const std::vector<double>& near_d2) {
           if(count_while_searching) count_examined(near.size());
           offer_edge(e, near, &near_d2, [](std::size_t m) { return m; });
         }, Neighborhood_order::TREE);
@@ -358,8 +360,9 @@ private:
     double margin = 0;
     if constexpr(estimates) {
       if(near_d2 != nullptr) {
-        const double dx = CGAL::to_double(b.x()) - CGAL::to_double(a.x()), dy = CGAL::to_double(b.y()) - CGAL::to_double(a.y()),
-                     dz = CGAL::to_double(b.z()) - CGAL::to_double(a.z());
+        const double dx = CGAL::to_double(b.x()) - CGAL::to_double(a.x());
+        const double dy = CGAL::to_double(b.y()) - CGAL::to_double(a.y());
+        const double dz = CGAL::to_double(b.z()) - CGAL::to_double(a.z());
         margin = estimate_margin * (std::sqrt(dx * dx + dy * dy + dz * dz) * (1 + estimate_margin));
       }
     }
@@ -369,9 +372,11 @@ private:
       if(v == u || v == w || v == apex) continue;
       if constexpr(estimates) {
         if(near_d2 != nullptr) {
-          // surely farther than the bound (infinite: never; an estimate not computed, NaN: never)
+          // surely farther than the bound (infinite: never; an estimate not computed, NaN: never;
+          // a bound whose square is not a normal number: never, as the relative margin is lost in
+          // the rounding of numbers that small)
           const double beyond = (bound(k) + margin) * (1 + 2 * estimate_margin);
-          if((*near_d2)[i] > beyond * beyond) continue;
+          if(beyond > smallest_estimated_bound && (*near_d2)[i] > beyond * beyond) continue;
         }
       }
       offer(k, std::sqrt(CGAL::to_double(squared_distance_(border_point(k), s))));
@@ -380,6 +385,9 @@ private:
 
   // the relative margin of the octree's estimates of the distances to an edge
   static constexpr double estimate_margin = 1e-10;
+  // the smallest bound below which the estimates leave nothing out (its square, 1e-280, and the
+  // estimates above it are normal numbers)
+  static constexpr double smallest_estimated_bound = 1e-140;
 
   // The edge `edge` at distance `d` of border vertex `k`, by the rule above.
   void offer_edge_at(std::size_t k, double d, const Adjacency_tables::Edge& edge)
