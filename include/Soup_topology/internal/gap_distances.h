@@ -296,8 +296,9 @@ private:
     Uninitialized_vector<Adjacency_tables::size_type> border_index(tables_.number_of_vertices());
     for(std::size_t p = 0; p < vertex_at_.size(); ++p)
       border_index[vertex_at_[p]] = static_cast<Adjacency_tables::size_type>(p);
-    // a counting sort by first end: the edges of each position, then their places
-    std::vector<Adjacency_tables::size_type> first(vertex_at_.size() + 1, 0);
+    // a counting sort by first end: the edges of each position, then their places (`std::size_t`:
+    // a soup may have more than 2^32 border edges, three per triangle)
+    std::vector<std::size_t> first(vertex_at_.size() + 1, 0);
     const auto for_each_border_edge = [&](const auto& f) {
       for(std::size_t t = 0; t < tables_.number_of_triangles(); ++t) {
         const auto tt = static_cast<Adjacency_tables::size_type>(t);
