@@ -781,12 +781,29 @@ TEST(ReconstructTopology, Issue21RelativeToleranceOnHugeCoordinates)
   EXPECT_DOUBLE_EQ(r.tolerance, std::sqrt(3.0) * 1e100);
   EXPECT_EQ(r.output_triangles, 4u);
   EXPECT_TRUE(r.closed());
-  // A relative tolerance whose absolute value is too large is refused for that reason.
-  try {
-    ST::reconstruct_topology(points, triangles, ST::parameters::relative_tolerance(1e-6));
-    ADD_FAILURE() << "not refused";
-  } catch(const ST::Invalid_input& e) {
-    EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
+  // The pipeline runs on these points scaled by 2^-997: a relative tolerance of 1e-6, 1.7e294, is
+  // 1.7e-6 of the scaled diagonal and is accepted (tolerance.h refused it before, its square
+  // overflowing).
+  std::vector<Point> p2 = points;
+  std::vector<Triangle> t2 = triangles;
+  EXPECT_NO_THROW(r = ST::reconstruct_topology(p2, t2, ST::parameters::relative_tolerance(1e-6)));
+  EXPECT_EQ(r.tolerance, 1e-6 * (std::sqrt(3.0) * 1e300));
+  EXPECT_TRUE(r.closed());
+  EXPECT_EQ(p2, points);
+  // So is an absolute tolerance of 1e299 there. One whose square overflows at the scale of the
+  // points (1e160 for points within the unit cube) is refused for that reason.
+  p2 = points;
+  t2 = triangles;
+  EXPECT_NO_THROW(r = ST::reconstruct_topology(p2, t2, CGAL::parameters::snapping_tolerance(1e299)));
+  EXPECT_EQ(r.tolerance, 1e299);
+  std::vector<Point> unit = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)};
+  for(const double tolerance : {1e160, 1e300}) {
+    try {
+      ST::reconstruct_topology(unit, triangles, CGAL::parameters::snapping_tolerance(tolerance));
+      ADD_FAILURE() << "not refused";
+    } catch(const ST::Invalid_input& e) {
+      EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -1275,6 +1292,73 @@ TEST(VertexToleranceMap, PipelineRefusesBadValuesAndLeavesTheSoupUnchanged)
                ST::Invalid_input);
   EXPECT_EQ(points, p0);
   EXPECT_EQ(triangles, t0);
+}
+
+// A file in another unit: its coordinates near 1e-270 or 1e300, where squared distances and
+// squared tolerances leave the range of doubles (near 1e-270 nothing was welded; near 1e300 the
+// tolerance was refused as too large). The pipeline on a soup scaled by 2^k, with its tolerances
+// scaled by 2^k, takes the decisions it takes on the soup: the same welds, refusals and splits
+// (the visitor), the same triangles, the points scaled, the report's lengths scaled.
+TEST(Pipeline, RepairDoesNotDependOnTheScale)
+{
+  std::vector<Named_soup> inputs;
+  {
+    auto [points, triangles] = load<Point>("cad/ALSTOM_TEST4.off");
+    const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    inputs.push_back({"ALSTOM_TEST4", points, triangles, 1e-3 * diag});
+  }
+  {
+    auto [points, triangles] = load<Point>("clean/elephant.off");
+    const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    const double jitter = 1e-5 * diag;
+    auto f_soup = soup_test::small_feature_soup(points, triangles, 10, jitter, 0.5, 8 * jitter, 3);
+    inputs.push_back({"elephant with small features", f_soup.points, f_soup.triangles, 8 * jitter});
+  }
+  const auto scaled = [](std::vector<Point> points, int k) {
+    for(Point& p : points) p = Point(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+    return points;
+  };
+  for(const Named_soup& in : inputs) {
+    SCOPED_TRACE(in.name);
+    auto p1 = in.points;
+    auto t1 = in.triangles;
+    Recording_visitor v1;
+    const Reconstruction_report r1 =
+      ST::reconstruct_topology(p1, t1, CGAL::parameters::snapping_tolerance(in.tolerance).visitor(std::ref(v1)));
+    ASSERT_GT(r1.snapped_vertices + r1.split_triangles, 0u);
+    // (-120 and 120: run as they are; the others on the points scaled back to the unit)
+    for(int k : {-900, -600, -140, -120, 120, 600, 1000}) {
+      SCOPED_TRACE("2^" + std::to_string(k));
+      const std::vector<Point> input = scaled(in.points, k);
+      const std::vector<double> tolerances(input.size(), std::ldexp(in.tolerance, k));
+      for(int with_map = 0; with_map < 2; ++with_map) {
+        auto p2 = input;
+        auto t2 = in.triangles;
+        Recording_visitor v2;
+        const Reconstruction_report r2 =
+          with_map ? ST::reconstruct_topology(p2, t2, ST::parameters::vertex_tolerance_map(
+                                                        CGAL::make_property_map(tolerances)).visitor(std::ref(v2)))
+                   : ST::reconstruct_topology(p2, t2, CGAL::parameters::snapping_tolerance(std::ldexp(in.tolerance, k))
+                                                        .visitor(std::ref(v2)));
+        EXPECT_EQ(t2, t1);
+        EXPECT_EQ(p2, scaled(p1, k));
+        EXPECT_EQ(v2.told, v1.told);
+        EXPECT_EQ(r2.tolerance, std::ldexp(r1.tolerance, k));
+        EXPECT_EQ(r2.max_displacement, std::ldexp(r1.max_displacement, k));
+        EXPECT_EQ(r2.snapped_vertices, r1.snapped_vertices);
+        EXPECT_EQ(r2.split_triangles, r1.split_triangles);
+        EXPECT_EQ(r2.border_edges_after, r1.border_edges_after);
+        EXPECT_EQ(r2.small_features_resolved, r1.small_features_resolved);
+        EXPECT_EQ(r2.refused_welds(), r1.refused_welds());
+      }
+    }
+  }
+  // A refusal leaves the soup as it was, not scaled.
+  std::vector<Point> far = scaled(inputs[0].points, 1000);
+  const std::vector<Point> far0 = far;
+  std::vector<Triangle> t = inputs[0].triangles;
+  EXPECT_THROW(ST::reconstruct_topology(far, t, CGAL::parameters::snapping_tolerance(-1.0)), ST::Invalid_input);
+  EXPECT_EQ(far, far0);
 }
 
 } // namespace tolerance_map

@@ -17,6 +17,7 @@
 #include <Soup_topology/snap_vertices.h>
 #include <Soup_topology/split_t_junctions.h>
 #include <Soup_topology/triangle_soup_to_face_graph.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/small_feature_degenerate.h>
 #include <Soup_topology/internal/soup_checks.h>
@@ -464,6 +465,17 @@ public:
   }
 
   const std::vector<Point>& points() const { return pts_; }
+
+  /// multiplies every point by 2^exponent, and the lengths of the report (exact for points that
+  /// `moderate_scale_exponent_of()` accepted, whose output points are input points): the
+  /// pipeline runs on the scaled points, then `scale(-exponent)` gives them and the report back
+  /// at the scale of the input.
+  void scale(int exponent)
+  {
+    for(Point& p : pts_) p = scaled_point(p, exponent);
+    report_.tolerance = std::ldexp(report_.tolerance, exponent);
+    report_.max_displacement = std::ldexp(report_.max_displacement, exponent);
+  }
   const Reconstruction_report& report() const { return report_; }
 
 private:
@@ -535,33 +547,48 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   using FT = typename Geom_traits::FT;
   Soup_reconstruction<Geom_traits, TriangleRange, ConcurrencyTag> steps(pts, triangles, input_index, gt);
   put_points(steps);
-  FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np);
+  // Coordinates beyond 2^128 or below 2^-128 (a file in another unit): the pipeline runs on the
+  // points scaled by a power of two (`exponent`, 0 otherwise), with the tolerances scaled alike,
+  // and gives the points and the report's lengths back at the input's scale. The decisions are
+  // then those taken on the soup at a moderate scale: squared tolerances and distances neither
+  // overflow nor underflow (internal/coordinate_scale.h).
+  const int exponent = moderate_scale_exponent_of(steps.points());
+  FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np,
+                                 exponent);
   if constexpr(has_vertex_tolerance_map<NamedParameters>()) {
     // Read once at the input index of every point (every point is its own input point here),
     // checked; the exact weld keeps them with the points. The report's tolerance is the largest.
     std::vector<FT> tolerances;
-    read_vertex_tolerances<FT>(np, steps.points().size(), tolerances, "reconstruct_topology");
+    read_vertex_tolerances<FT>(np, steps.points().size(), tolerances, "reconstruct_topology", exponent);
     eps = largest_tolerance(tolerances);
     steps.set_vertex_tolerances(std::move(tolerances));
   }
   std::optional<Gap_analysis> automatic;
   if constexpr(!CGAL::parameters::is_default_parameter<NamedParameters, internal_np::automatic_tolerance_t>::value) {
     if(choose_parameter(get_parameter(np, internal_np::automatic_tolerance), false)) {
+      // (the analysis scales the soup on its own, and speaks of lengths at the input's scale)
       automatic = automatic_tolerance_analysis<ConcurrencyTag>(steps.points(), triangles, np, gt, exact_weld);
-      eps = FT(automatic->suggested_tolerance);
+      eps = FT(std::ldexp(automatic->suggested_tolerance, exponent));
     }
   }
-  if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
-  const Small_features policy = small_features_policy(np);
-  if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
-  steps.build_tables();
-  with_user_visitor(np, [&](auto& visitor) {
-    steps.weld_and_split_in_rounds(
-      eps, choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8)),
-      choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), policy, visitor);
-  });
-  steps.measure_displacement();
-  steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
+  if(exponent != 0) steps.scale(exponent);
+  try {
+    if(exact_weld == Exact_weld::TO_DO) steps.weld_exact_duplicates();
+    const Small_features policy = small_features_policy(np);
+    if(policy == Small_features::COLLAPSE) steps.flip_degenerate_triangles_away();
+    steps.build_tables();
+    with_user_visitor(np, [&](auto& visitor) {
+      steps.weld_and_split_in_rounds(
+        eps, choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8)),
+        choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true), policy, visitor);
+    });
+    steps.measure_displacement();
+    steps.finish(choose_parameter(get_parameter(np, internal_np::count_self_intersections), false));
+  } catch(...) {
+    if(exponent != 0) steps.scale(-exponent);
+    throw;
+  }
+  if(exponent != 0) steps.scale(-exponent);
   Reconstruction_report report = steps.report();
   if(automatic) {
     report.automatic_tolerance = true;

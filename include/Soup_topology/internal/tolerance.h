@@ -59,10 +59,11 @@ double bounding_box_diagonal(const PointRange& points, const PointMap& pm)
 }
 
 /// the absolute tolerance given by `np`: `snapping_tolerance` if present, else
-/// `relative_tolerance` times the bounding-box diagonal, else 0.
+/// `relative_tolerance` times the bounding-box diagonal, else 0; times 2^exponent, for points
+/// that the caller scales by 2^exponent (`moderate_scale_exponent()`), and checked at that scale.
 /// \throws Invalid_input if it is negative, NaN or infinite, or if both are given.
 template <class FT, class PointRange, class PointMap, class NamedParameters>
-FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedParameters& np)
+FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedParameters& np, int exponent = 0)
 {
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -83,18 +84,23 @@ FT resolve_tolerance(const PointRange& points, const PointMap& pm, const NamedPa
                           "): the square of twice its value overflows a double");
   };
   if constexpr(has_absolute) {
-    const FT eps = FT(get_parameter(np, CGAL::internal_np::snapping_tolerance));
-    const double e = CGAL::to_double(eps);
+    const FT given = FT(get_parameter(np, CGAL::internal_np::snapping_tolerance));
+    const double e = CGAL::to_double(given);
     if(!(e >= 0) || !std::isfinite(e))
       throw Invalid_input("the tolerance must be a finite number >= 0 (got " + std::to_string(e) + ")");
-    check_square(e, "the tolerance");
+    if(exponent == 0) {
+      check_square(e, "the tolerance");
+      return given;
+    }
+    const FT eps = given * FT(std::ldexp(1.0, exponent));
+    check_square(CGAL::to_double(eps), "the tolerance, at the scale of the points,");
     return eps;
   } else if constexpr(has_relative) {
     const double r = static_cast<double>(get_parameter(np, internal_np::relative_tolerance));
     if(!(r >= 0) || !std::isfinite(r))
       throw Invalid_input("the relative tolerance must be a finite number >= 0 (got " + std::to_string(r) + ")");
     if(r == 0) return FT(0);
-    const double e = r * bounding_box_diagonal(points, pm);
+    const double e = r * std::ldexp(bounding_box_diagonal(points, pm), exponent);
     if(!std::isfinite(e))
       throw Invalid_input("the relative tolerance " + text(r) + " gives a non-finite absolute tolerance "
                           "(the bounding-box diagonal overflows a double)");
@@ -147,12 +153,14 @@ void check_vertex_tolerance_map_alone(const NamedParameters& np, const char* fun
   }
 }
 
-/// the tolerance `value` of point `i` of a `vertex_tolerance_map`, checked as `resolve_tolerance()`
-/// checks one tolerance. \throws Invalid_input if it is negative, NaN, infinite or too large.
+/// the tolerance `value` of point `i` of a `vertex_tolerance_map` times 2^exponent (see
+/// `resolve_tolerance()`), checked as `resolve_tolerance()` checks one tolerance.
+/// \throws Invalid_input if it is negative, NaN, infinite or too large.
 template <class FT, class Value>
-FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* function)
+FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* function, int exponent = 0)
 {
-  const double e = CGAL::to_double(value);
+  const FT scaled = exponent == 0 ? FT(value) : FT(value) * FT(std::ldexp(1.0, exponent));
+  const double e = CGAL::to_double(scaled);
   const auto text = [](double x) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", x);
@@ -165,7 +173,7 @@ FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* funct
     throw Invalid_input(std::string(function) + ": the tolerance of point " + std::to_string(i) +
                         " (vertex_tolerance_map) is too large (" + text(e) +
                         "): the square of twice its value overflows a double");
-  return FT(value);
+  return scaled;
 }
 
 /// the tolerances of the points 0, ..., n - 1 given by the `vertex_tolerance_map` of `np`, or
@@ -175,7 +183,7 @@ FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* funct
 /// \throws Invalid_input for a bad value, or for a map given with another tolerance parameter.
 template <class FT, class NamedParameters>
 const std::vector<FT>* read_vertex_tolerances(const NamedParameters& np, std::size_t n, std::vector<FT>& storage,
-                                              const char* function)
+                                              const char* function, int exponent = 0)
 {
   if constexpr(has_vertex_tolerance_map<NamedParameters>()) {
     check_vertex_tolerance_map_alone(np, function);
@@ -187,7 +195,8 @@ const std::vector<FT>* read_vertex_tolerances(const NamedParameters& np, std::si
     } else {
       storage.clear();
       storage.reserve(n);
-      for(std::size_t i = 0; i < n; ++i) storage.push_back(checked_vertex_tolerance<FT>(get(map, i), i, function));
+      for(std::size_t i = 0; i < n; ++i)
+        storage.push_back(checked_vertex_tolerance<FT>(get(map, i), i, function, exponent));
       return &storage;
     }
   } else {

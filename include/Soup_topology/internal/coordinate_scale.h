@@ -1,0 +1,94 @@
+// Copyright (c) 2026 The Soup_topology authors.
+// SPDX-License-Identifier: LGPL-3.0-or-later
+//
+// Soups at extreme scales: the power of two by which the gap analysis and the pipeline scale
+// coordinates beyond 2^128 or below 2^-128 before they measure and decide, and back after.
+
+#ifndef SOUP_TOPOLOGY_INTERNAL_COORDINATE_SCALE_H
+#define SOUP_TOPOLOGY_INTERNAL_COORDINATE_SCALE_H
+
+#include <CGAL/Kernel_traits.h>
+#include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+namespace Soup_topology {
+namespace internal {
+
+/// the exponent beyond which (in absolute value) the coordinates of a soup are scaled before
+/// they are measured: with the largest coordinate within [2^-128, 2^128], every product the
+/// measures and the predicates' filters form (squared lengths and tolerances, cross products,
+/// their squares: up to fourth powers of coordinates and of their differences) is a normal double.
+constexpr int moderate_exponent_bound = 128;
+
+/// the largest absolute value of a coordinate of `p`, as a double.
+template <class Point>
+double largest_coordinate(const Point& p)
+{
+  return std::max(std::abs(CGAL::to_double(p.x())),
+                  std::max(std::abs(CGAL::to_double(p.y())), std::abs(CGAL::to_double(p.z()))));
+}
+
+/// the power of two 2^e by which a soup whose largest coordinate (absolute value) is `largest`
+/// is scaled: e = 0 when that lies in [2^-128, 2^128) (or is 0, or not finite), else the e that
+/// brings it into [1, 2).
+///
+/// Beyond, squared lengths overflow (coordinates near 1e200: a distance to an edge comes out
+/// infinite, a tolerance is refused as too large) or underflow (near 1e-200: gaps, heights and
+/// squared tolerances come out 0, and nothing is welded), and results change with the unit of the
+/// file. Scaled by a power of two, the coordinates are the same numbers with another exponent:
+/// every distance computed on them, scaled back, is the one computed on the soup at a moderate
+/// scale, scaled, to the bit (the rounding of `+ - * / sqrt` does not depend on the exponents
+/// while the results are normal numbers), and the exact predicates decide the same.
+inline int moderate_scale_exponent(double largest)
+{
+  if(!(largest > 0) || !std::isfinite(largest)) return 0;
+  const int e = std::ilogb(largest);
+  return e >= -moderate_exponent_bound && e < moderate_exponent_bound ? 0 : -e;
+}
+
+/// `true` if the coordinates of `p` times 2^e are exact: always with an exact number type; with
+/// double coordinates, unless one falls below the normal numbers and is rounded.
+template <class Point>
+bool scales_exactly(const Point& p, int e)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  if constexpr(std::is_same<FT, double>::value) {
+    const auto exact = [e](double x) { return std::ldexp(std::ldexp(x, e), -e) == x; };
+    return exact(p.x()) && exact(p.y()) && exact(p.z());
+  } else {
+    return true;
+  }
+}
+
+/// `p` times 2^e (exact when `scales_exactly(p, e)`).
+template <class Point>
+Point scaled_point(const Point& p, int e)
+{
+  using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
+  const FT factor(std::ldexp(1.0, e));
+  return Point(p.x() * factor, p.y() * factor, p.z() * factor);
+}
+
+/// the exponent e of `moderate_scale_exponent()` for the points `points` (all of them), or 0
+/// when some point would not scale exactly (coordinates that span more than the range of the
+/// exponents): such a soup is measured as it is.
+template <class Point>
+int moderate_scale_exponent_of(const std::vector<Point>& points)
+{
+  double largest = 0;
+  for(const Point& p : points) largest = std::max(largest, largest_coordinate(p));
+  const int e = moderate_scale_exponent(largest);
+  if(e == 0) return 0;
+  for(const Point& p : points)
+    if(!scales_exactly(p, e)) return 0;
+  return e;
+}
+
+} // namespace internal
+} // namespace Soup_topology
+
+#endif // SOUP_TOPOLOGY_INTERNAL_COORDINATE_SCALE_H
