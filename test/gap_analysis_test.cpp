@@ -397,14 +397,11 @@ TEST(GapAnalysis, RejectsInvalidSoups)
   EXPECT_THROW(ST::analyze_gaps(points, one), ST::Invalid_input);
 }
 
-// The nearest border element of every border vertex, from the two passes of
-// nearest_border_elements(), equals a brute-force search over all border vertices and edges with
-// the same exact radius test and the same preference rules, at radii where most vertices are
-// decided by the first pass and where few are.
-TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
+// A 12 x 12 grid of squares over the unit square in four patches, each with its own copies of
+// its points, every copy jittered by 10^u with u uniform in [-7, -1.5]: gaps from 1e-7 to beyond
+// the grid step.
+Soup jittered_patches()
 {
-  // A 12 x 12 grid of squares in four patches, each with its own copies of its points, every
-  // copy jittered by 10^u with u uniform in [-7, -1.5]: gaps from 1e-7 to beyond the grid step.
   const std::size_t n = 12;
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> exponent(-7, -1.5), direction(-1, 1);
@@ -427,6 +424,18 @@ TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
         triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
       }
   }
+  return Soup{points, triangles};
+}
+
+// The nearest border element of every border vertex, from the two passes of
+// nearest_border_elements(), equals a brute-force search over all border vertices and edges with
+// the same exact radius test and the same preference rules, at radii where most vertices are
+// decided by the first pass and where few are.
+TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
+{
+  const Soup s = jittered_patches();
+  const std::vector<Point>& points = s.points;
+  const std::vector<Triangle>& triangles = s.triangles;
   const ST::Adjacency_tables tables(triangles, points.size());
   const std::vector<std::size_t> border = ST::internal::border_vertices(tables);
   ASSERT_GT(border.size(), 40u);
@@ -467,6 +476,87 @@ TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
     if(radius == 0.2) {
       EXPECT_GT(decided, 0u);
       EXPECT_LT(decided, border.size());
+    }
+  }
+}
+
+// `s` with every coordinate times 2^k (exactly: no coordinate of the soups below leaves the
+// normal numbers).
+Soup scaled_soup(const Soup& s, int k)
+{
+  Soup out{{}, s.triangles};
+  for(const Point& p : s.points)
+    out.points.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+  return out;
+}
+
+void expect_scaled(const ST::Size_distribution& a, const ST::Size_distribution& b, int k, const std::string& what)
+{
+  EXPECT_EQ(b.count, a.count) << what;
+  EXPECT_EQ(b.minimum, std::ldexp(a.minimum, k)) << what;
+  EXPECT_EQ(b.median, std::ldexp(a.median, k)) << what;
+  EXPECT_EQ(b.maximum, std::ldexp(a.maximum, k)) << what;
+}
+
+// A file in the wrong unit, or generated at an odd scale, has coordinates near 1e-270 or 1e300:
+// squared lengths leave the range of doubles there (distances to edges came out infinite, gaps
+// and heights 0, and the suggestion changed with the unit). The analysis of the soup scaled by
+// 2^k is that of the soup, scaled by 2^k, to the bit: gaps, features, bound and suggestion, the
+// parts and their tolerances, and the automatic repair closes the same seams. (k even: the
+// suggestion, a geometric mean, is then scaled exactly too.)
+TEST(GapAnalysis, AnalysisDoesNotDependOnTheScale)
+{
+  for(const auto& [name, soup] : {std::make_pair(std::string("TO-220"), load("cad/kicad/TO-220-3_Vertical.wrl")),
+                                  std::make_pair(std::string("jittered patches"), jittered_patches())}) {
+    const ST::Gap_analysis a = ST::analyze_gaps(soup.points, soup.triangles);
+    const std::vector<ST::Part_gap_analysis> parts = ST::analyze_gaps_per_part(soup.points, soup.triangles);
+    Soup repaired = soup;
+    const ST::Reconstruction_report r =
+      ST::reconstruct_topology(repaired.points, repaired.triangles, ST::parameters::automatic_tolerance(true));
+    ASSERT_EQ(a.verdict, ST::Gap_verdict::SUGGESTED) << name << ": " << a.reasoning;
+    ASSERT_GT(a.gaps.size(), 4u) << name;
+    // (-120 and 120: measured as they are; the others on a copy scaled back to the unit)
+    for(int k : {-900, -500, -140, -120, 120, 500, 1000}) {
+      const std::string what = name + ", 2^" + std::to_string(k);
+      const Soup scaled = scaled_soup(soup, k);
+      const ST::Gap_analysis b = ST::analyze_gaps(scaled.points, scaled.triangles);
+      EXPECT_EQ(b.verdict, a.verdict) << what << ": " << b.reasoning;
+      EXPECT_EQ(b.vertices, a.vertices) << what;
+      EXPECT_EQ(b.border_vertices, a.border_vertices) << what;
+      EXPECT_EQ(b.degenerate_triangles, a.degenerate_triangles) << what;
+      EXPECT_EQ(b.bounding_box_diagonal, std::ldexp(a.bounding_box_diagonal, k)) << what;
+      EXPECT_EQ(b.search_radius, std::ldexp(a.search_radius, k)) << what;
+      ASSERT_EQ(b.gaps.size(), a.gaps.size()) << what;
+      for(std::size_t i = 0; i < a.gaps.size(); ++i)
+        EXPECT_EQ(b.gaps[i], std::ldexp(a.gaps[i], k)) << what << ", gap " << i;
+      EXPECT_EQ(b.gaps_beyond_search_radius, a.gaps_beyond_search_radius) << what;
+      EXPECT_EQ(b.zero_gaps, a.zero_gaps) << what;
+      expect_scaled(a.shortest_edges, b.shortest_edges, k, what + ", shortest edges");
+      expect_scaled(a.smallest_heights, b.smallest_heights, k, what + ", smallest heights");
+      expect_scaled(a.border_features, b.border_features, k, what + ", border features");
+      EXPECT_EQ(b.feature_bound, std::ldexp(a.feature_bound, k)) << what;
+      EXPECT_EQ(b.suggested_tolerance, std::ldexp(a.suggested_tolerance, k)) << what;
+      EXPECT_EQ(b.closed_gaps, a.closed_gaps) << what;
+      EXPECT_EQ(b.closing_margin, a.closing_margin) << what;
+      EXPECT_EQ(b.keeping_margin, a.keeping_margin) << what;
+
+      const std::vector<ST::Part_gap_analysis> scaled_parts =
+        ST::analyze_gaps_per_part(scaled.points, scaled.triangles);
+      ASSERT_EQ(scaled_parts.size(), parts.size()) << what;
+      for(std::size_t i = 0; i < parts.size(); ++i) {
+        EXPECT_EQ(scaled_parts[i].verdict, parts[i].verdict) << what << ", part " << i;
+        EXPECT_EQ(scaled_parts[i].feature_bound, std::ldexp(parts[i].feature_bound, k)) << what << ", part " << i;
+        EXPECT_EQ(scaled_parts[i].suggested_tolerance, std::ldexp(parts[i].suggested_tolerance, k)) << what;
+        EXPECT_EQ(scaled_parts[i].points, parts[i].points) << what << ", part " << i;
+      }
+
+      Soup scaled_repaired = scaled;
+      const ST::Reconstruction_report rb = ST::reconstruct_topology(
+        scaled_repaired.points, scaled_repaired.triangles, ST::parameters::automatic_tolerance(true));
+      EXPECT_EQ(rb.tolerance, std::ldexp(r.tolerance, k)) << what;
+      EXPECT_EQ(rb.border_edges_after, r.border_edges_after) << what;
+      EXPECT_EQ(scaled_repaired.triangles, repaired.triangles) << what;
+      EXPECT_EQ(scaled_repaired.points, scaled_soup(repaired, k).points) << what;
     }
   }
 }

@@ -10,6 +10,7 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/index_triangles.h>
 #include <Soup_topology/parameters.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/gap_distances.h>
 #include <Soup_topology/internal/gap_suggestion.h>
 #include <Soup_topology/internal/soup_checks.h>
@@ -314,12 +315,14 @@ void add_border_features(const Point& p, const Point& q, const Point& r, Adjacen
 
 /// the feature sizes of the soup into `a`: shortest edges and smallest heights of the
 /// non-degenerate triangles, the border features, and the bound a tolerance must stay below.
+/// The sizes measured on `pts` are multiplied by `unscale` (see `scale_for_analysis()`).
 /// The triangles are measured by blocks (in parallel with `CGAL::Parallel_tag`), each into buffers
 /// of its own, put together in the order of the blocks: the sizes come in the order of the
 /// triangles, as measured one by one.
 template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
 void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
-                           const Adjacency_tables& tables, const Geom_traits& gt, Gap_analysis& a)
+                           const Adjacency_tables& tables, const Geom_traits& gt, Gap_analysis& a,
+                           double unscale = 1)
 {
   using Point = typename Geom_traits::Point_3;
   struct Sizes
@@ -359,6 +362,9 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
   gather(&Sizes::heights, heights);
   gather(&Sizes::smallest, smallest);
   gather(&Sizes::border_features, border_features);
+  if(unscale != 1)
+    for(std::vector<double>* sizes : {&shortest, &heights, &smallest, &border_features})
+      for(double& x : *sizes) x *= unscale;
   for(const Sizes& b : blocks) a.degenerate_triangles += b.degenerate;
   a.shortest_edges = size_distribution(shortest);
   a.smallest_heights = size_distribution(heights);
@@ -371,10 +377,12 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// the gaps of the border vertices `border` into `a`, measured up to the median border edge
 /// length (at least the smallest border feature, so that every gap below the bound and the first
 /// one above it are measured when they exist); returns the nearest element of every border vertex.
+/// The lengths measured on `pts` are multiplied by `unscale` (see `scale_for_analysis()`): `a`
+/// and the distances returned are at the scale of the soup.
 template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
 std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
                   const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
-                  Gap_analysis& a)
+                  Gap_analysis& a, double unscale = 1)
 {
   using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
   std::vector<std::vector<double>> lengths(number_of_blocks(tris.size()));
@@ -389,12 +397,16 @@ std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom
   });
   std::vector<double> border_lengths;
   concatenate_in_block_order(lengths, border_lengths);
+  if(unscale != 1)
+    for(double& x : border_lengths) x *= unscale;
   std::nth_element(border_lengths.begin(), border_lengths.begin() + static_cast<std::ptrdiff_t>(border_lengths.size() / 2),
                    border_lengths.end());
   a.search_radius = border_lengths[border_lengths.size() / 2];
   if(a.border_features.count > 0) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
-  const std::vector<Nearest_border_element> nearest =
-    nearest_border_elements<ConcurrencyTag>(pts, tables, border, a.search_radius, gt);
+  std::vector<Nearest_border_element> nearest =
+    nearest_border_elements<ConcurrencyTag>(pts, tables, border, a.search_radius / unscale, gt);
+  if(unscale != 1)
+    for(Nearest_border_element& e : nearest) e.distance *= unscale;
   for(const Nearest_border_element& e : nearest) {
     if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
     else ++a.gaps_beyond_search_radius;
@@ -421,11 +433,43 @@ double used_points_diagonal(const std::vector<Point>& pts, const TriangleRange& 
   return bounding_box_diagonal(kept, CGAL::Identity_property_map<Point>());
 }
 
+/// the factor by which the lengths measured on `scaled` give those of `pts`: 1 when the soup is
+/// measured as it is (`scaled` left empty), else 2^-e for the e of `moderate_scale_exponent()`
+/// of the points a triangle of `tris` uses (`used_points` of the points of `pts`), `scaled` then
+/// holding every point of `pts` times 2^e. A soup that the scaling would round (double
+/// coordinates that span more than the range of the exponents) is measured as it is.
+template <class Point, class TriangleRange>
+double scale_for_analysis(const std::vector<Point>& pts, const TriangleRange& tris, std::size_t used_points,
+                          std::vector<Point>& scaled)
+{
+  const auto for_each_used_point = [&](const auto& f) {
+    if(used_points == pts.size())
+      for(const Point& p : pts) f(p);
+    else
+      for(const auto& t : tris)
+        for(std::size_t j = 0; j < 3; ++j) f(pts[static_cast<std::size_t>(t[j])]);
+  };
+  double largest = 0;
+  for_each_used_point([&largest](const Point& p) { largest = std::max(largest, largest_coordinate(p)); });
+  const int e = moderate_scale_exponent(largest);
+  if(e == 0) return 1;
+  bool exact = true;
+  for_each_used_point([&](const Point& p) { exact = exact && scales_exactly(p, e); });
+  if(!exact) return 1;
+  scaled.reserve(pts.size());
+  for(const Point& p : pts) scaled.push_back(scaled_point(p, e));
+  return std::ldexp(1.0, -e);
+}
+
 /// `analyze_gaps()` of a soup that is exactly welded already, as `IO::read_triangle_soup()`,
 /// `index_triangles()` and the exact weld of `reconstruct_topology()` leave it: no two points of
 /// `pts` are equal and every triangle of `tris` (3 indices into `pts`) has three distinct
 /// corners. Trusted, not checked; points no triangle uses are allowed and ignored. The soup is
 /// neither copied nor welded again: the answer is that of `analyze_gaps()` on the same soup.
+///
+/// Coordinates beyond 2^128 or below 2^-128 are measured on a copy scaled by a power of two (see
+/// `moderate_scale_exponent()`), the lengths scaled back: the answer is then that of the soup
+/// at a moderate scale, scaled.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Geom_traits, class TriangleRange>
 Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits::Point_3>& pts,
                                          const TriangleRange& tris, const Geom_traits& gt)
@@ -437,8 +481,11 @@ Gap_analysis analyze_exactly_welded_gaps(const std::vector<typename Geom_traits:
   a.bounding_box_diagonal = used_points_diagonal(pts, tris, a.vertices);
   const std::vector<std::size_t> border = border_vertices(tables);
   a.border_vertices = border.size();
-  measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, a);
-  if(!border.empty()) measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, a);
+  std::vector<typename Geom_traits::Point_3> scaled;
+  const double unscale = scale_for_analysis(pts, tris, a.vertices, scaled);
+  const auto& measured = unscale == 1 ? pts : scaled;
+  measure_feature_sizes<ConcurrencyTag>(measured, tris, tables, gt, a, unscale);
+  if(!border.empty()) measure_gaps<ConcurrencyTag>(measured, tris, tables, border, gt, a, unscale);
   suggest_tolerance(a);
   return a;
 }
@@ -680,20 +727,27 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   std::vector<std::size_t> welded_index;
   internal::exactly_welded_copy<Point>(points, triangles, NP_helper::get_point_map(np), pts, tris, &welded_index);
   const Adjacency_tables tables(tris, pts.size());
+  // (coordinates beyond 2^128 or below 2^-128 measured on a scaled copy, as by analyze_gaps():
+  // every point of the copy is used)
+  std::vector<Point> scaled;
+  const double unscale = internal::scale_for_analysis(pts, tris, pts.size(), scaled);
+  if(unscale != 1) pts.swap(scaled);
 
   // The pieces (the triangles connected by shared vertices) and their smallest border features:
   // a third of that is the bound of a piece.
   std::vector<size_type> component;
   const std::size_t components = tables.number_of_connected_components(&component);
   std::vector<std::size_t> piece = internal::pieces_sharing_vertices(tables, component, components);
-  const std::vector<double> piece_feature =
+  std::vector<double> piece_feature =
     internal::smallest_border_feature_per_piece(pts, tris, tables, component, piece, gt);
+  if(unscale != 1)
+    for(double& f : piece_feature) f *= unscale;
   // The gaps, as analyze_gaps() measures them, with their nearest elements.
   Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
-  internal::measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, global);
+  internal::measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, global, unscale);
   std::vector<internal::Nearest_border_element> nearest;
-  if(!border.empty()) nearest = internal::measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, global);
+  if(!border.empty()) nearest = internal::measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, global, unscale);
   // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so
   // that the order of the joins does not matter).
   const auto piece_of_vertex = [&](std::size_t v) {

@@ -390,9 +390,11 @@ private:
   // estimates above it are normal numbers)
   static constexpr double smallest_estimated_bound = 1e-140;
 
-  // The edge `edge` at distance `d` of border vertex `k`, by the rule above.
+  // The edge `edge` at distance `d` of border vertex `k`, by the rule above. An infinite (or NaN)
+  // distance, which only a squared distance out of the range of doubles gives, is no answer.
   void offer_edge_at(std::size_t k, double d, const Adjacency_tables::Edge& edge)
   {
+    if(!(d < std::numeric_limits<double>::infinity())) return;
     Nearest_border_element& best = nearest_[k];
     if(d < best.distance || (d == best.distance && best.vertex == static_cast<std::size_t>(-1) && edge < best.edge)) {
       best.distance = d;
