@@ -807,6 +807,19 @@ TEST(TiledReconstruction, BadArgumentsAreRefused)
                ST::Invalid_input);
   EXPECT_THROW(ST::tiled_reconstruct_topology(source, 0, folder, points, triangles, CGAL::parameters::snapping_tolerance(1.0)),
                ST::Invalid_input);
+  // The tiles decide with the square of the tolerance: one that overflows or underflows (a soup
+  // near 1e-270 repaired at 1e-274 welded nothing) is refused, with the way out.
+  for(const auto& [tolerance, what] : {std::make_pair(1e160, "is too large"), std::make_pair(1e-160, "is too small")}) {
+    try {
+      ST::tiled_reconstruct_topology(source, 2, folder, points, triangles, CGAL::parameters::snapping_tolerance(tolerance));
+      ADD_FAILURE() << "not refused: " << tolerance;
+    } catch(const ST::Invalid_input& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("repair without tiles"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(ST::tiled_reconstruct_topology(source, 2, folder, points, triangles,
+                                                 CGAL::parameters::snapping_tolerance(1e-150)));
   std::filesystem::remove_all(folder);
 }
 

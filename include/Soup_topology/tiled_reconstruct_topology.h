@@ -225,8 +225,20 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
                 "tiled_reconstruct_topology: one absolute tolerance only (snapping_tolerance)");
   Tiled_repair_settings settings;
   settings.tolerance = CGAL::to_double(get_parameter(np, CGAL::internal_np::snapping_tolerance));
-  if(!(settings.tolerance >= 0) || !std::isfinite(4 * settings.tolerance * settings.tolerance))
+  const double t = settings.tolerance;
+  if(!(t >= 0) || !std::isfinite(t))
     throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
+  // The tiles decide with the squared tolerance as it is: unlike the pipeline in memory, they do
+  // not scale a soup at an extreme scale first (internal/coordinate_scale.h). A square that
+  // overflows, or that underflows below the normal numbers (nothing would be welded), is refused.
+  if(!std::isfinite(4 * t * t) || (t > 0 && 4 * t * t < std::numeric_limits<double>::min())) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", t);
+    throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance ") + value + " is too " +
+                        (t > 1 ? "large" : "small") + ": the square of twice its value " +
+                        (t > 1 ? "overflows" : "underflows") +
+                        " a double; repair without tiles, where a soup at such a scale is scaled first");
+  }
   settings.max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
   settings.do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
   settings.policy = small_features_policy(np);
