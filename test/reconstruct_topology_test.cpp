@@ -1361,6 +1361,52 @@ TEST(Pipeline, RepairDoesNotDependOnTheScale)
   EXPECT_EQ(far, far0);
 }
 
+// The steps on their own, at the same scales: `snap_vertices()` and `split_t_junctions()` decide
+// on a scaled copy of points beyond 2^128 or below 2^-128 (the caller's points are not changed).
+TEST(Pipeline, SnapAndSplitDoNotDependOnTheScale)
+{
+  const auto [points, triangles] = load<Point>("cad/ALSTOM_TEST4.off");
+  const double tolerance = 2e-4 * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  const auto scaled = [](std::vector<Point> p, int k) {
+    for(Point& q : p) q = Point(std::ldexp(q.x(), k), std::ldexp(q.y(), k), std::ldexp(q.z(), k));
+    return p;
+  };
+  auto welded = triangles;
+  Recording_visitor welds;
+  const ST::Snap_report s1 =
+    ST::snap_vertices(points, welded, CGAL::parameters::snapping_tolerance(tolerance).visitor(std::ref(welds)));
+  auto split = triangles;
+  Recording_visitor splits;
+  const ST::Split_report x1 =
+    ST::split_t_junctions(points, split, CGAL::parameters::snapping_tolerance(tolerance).visitor(std::ref(splits)));
+  ASSERT_GT(s1.merged_vertices, 0u);
+  ASSERT_GT(x1.split_triangles, 0u);
+  for(int k : {-900, -140, 120, 1000}) {
+    SCOPED_TRACE("2^" + std::to_string(k));
+    const std::vector<Point> input = scaled(points, k);
+    const double t = std::ldexp(tolerance, k);
+    auto welded2 = triangles;
+    Recording_visitor welds2;
+    const ST::Snap_report s2 =
+      ST::snap_vertices(input, welded2, CGAL::parameters::snapping_tolerance(t).visitor(std::ref(welds2)));
+    EXPECT_EQ(welded2, welded);
+    EXPECT_EQ(welds2.told, welds.told);
+    EXPECT_EQ(s2.merged_vertices, s1.merged_vertices);
+    EXPECT_EQ(s2.tolerance, std::ldexp(s1.tolerance, k));
+    EXPECT_EQ(s2.max_displacement, std::ldexp(s1.max_displacement, k));
+    const std::vector<double> tolerances(input.size(), t);
+    auto split2 = triangles;
+    Recording_visitor splits2;
+    const ST::Split_report x2 = ST::split_t_junctions(
+      input, split2,
+      ST::parameters::vertex_tolerance_map(CGAL::make_property_map(tolerances)).visitor(std::ref(splits2)));
+    EXPECT_EQ(split2, split);
+    EXPECT_EQ(splits2.told, splits.told);
+    EXPECT_EQ(x2.split_triangles, x1.split_triangles);
+    EXPECT_EQ(x2.tolerance, std::ldexp(x1.tolerance, k));
+  }
+}
+
 } // namespace tolerance_map
 
 } // namespace reconstruct_topology_test

@@ -10,12 +10,14 @@
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/parameters.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/tolerance.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/tags.h>
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -154,6 +156,13 @@ class Snap_visitor_holder;
 /// `points`, unreferenced (`reconstruct_topology()` removes them). Collapsed triangles are removed
 /// from `triangles` and `tables` (the others keep their order).
 ///
+/// **Scale.** Points whose largest coordinate lies beyond 2^128 or below 2^-128 (a file in
+/// another unit) are decided on a copy scaled by the power of two that brings it into [1, 2),
+/// with the tolerances scaled alike; the report's lengths are given at the input's scale. A
+/// power of two changes only exponents: the decisions are those taken on the soup at a moderate
+/// scale, where squared tolerances and distances neither overflow nor underflow
+/// (`internal/coordinate_scale.h`).
+///
 /// **Threads.** With `CGAL::Parallel_tag` the steps that are data-parallel run on TBB's threads;
 /// the result (triangles, tables, report, visitor calls) is the same on any number of threads
 /// (`doc/Soup_topology/Parallel.md`).
@@ -214,12 +223,19 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
   Visitor_holder visitor(np);
-  FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np);
+  // The points, read once (a readable map may return them by value); a vector of points under
+  // the identity map is used as it is. Beyond 2^128 or below 2^-128 the decisions are taken on a
+  // copy scaled by a power of two, with the tolerances scaled alike, as in
+  // `reconstruct_topology()` (internal/coordinate_scale.h).
+  std::vector<typename NP_helper::Point> point_storage;
+  const auto& given_points = NP_helper::points_as_vector(points, np, point_storage);
+  const int exponent = internal::moderate_scale_exponent_of(given_points);
+  FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np, exponent);
   // Per-vertex tolerances: every pair is decided with the smaller of its two; `eps`, the largest,
   // bounds the searches.
   std::vector<FT> tolerance_storage;
   const std::vector<FT>* tolerances =
-    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "snap_vertices");
+    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "snap_vertices", exponent);
   if(tolerances != nullptr) eps = internal::largest_tolerance(*tolerances);
   // Vertices that may receive welds but not move (`reconstruct_topology()` fixes the
   // representatives of earlier rounds, so that no point moves farther than the tolerance in all).
@@ -231,13 +247,14 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
     if(policy == Small_features::COLLAPSE)
       throw Invalid_input("snap_vertices: Small_features::COLLAPSE removes triangles: the triangle range needs resize()");
 
-  // The points, read once (a readable map may return them by value); a vector of points under
-  // the identity map is used as it is.
-  std::vector<typename NP_helper::Point> point_storage;
-  const auto& point_vector = NP_helper::points_as_vector(points, np, point_storage);
+  const auto& point_vector =
+    exponent == 0 ? given_points : internal::scaled_points(given_points, exponent, point_storage);
   internal::Snap_vertices_worker<Kernel, typename Visitor_holder::Visitor> worker(point_vector, tables, eps, fixed, kernel,
                                                                                   visitor.get(), policy, tolerances);
-  return worker.template run<ConcurrencyTag>(triangles);
+  Snap_report report = worker.template run<ConcurrencyTag>(triangles);
+  report.tolerance = std::ldexp(report.tolerance, -exponent);
+  report.max_displacement = std::ldexp(report.max_displacement, -exponent);
+  return report;
 }
 
 /// \ingroup PkgSoupTopologyWelding

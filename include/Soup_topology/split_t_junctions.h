@@ -11,12 +11,14 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/internal/soup_checks.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/tolerance.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/tags.h>
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <type_traits>
@@ -122,6 +124,13 @@ class T_junction_splitter;
 /// threads, its results put together in the order of the border edges: the result is the same
 /// on any number of threads (`doc/Soup_topology/Parallel.md`).
 ///
+/// **Scale.** Points whose largest coordinate lies beyond 2^128 or below 2^-128 (a file in
+/// another unit) are decided on a copy scaled by the power of two that brings it into [1, 2),
+/// with the tolerances scaled alike; the report's lengths are given at the input's scale. A
+/// power of two changes only exponents: the decisions are those taken on the soup at a moderate
+/// scale, where squared tolerances and distances neither overflow nor underflow
+/// (`internal/coordinate_scale.h`).
+///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
 ///         or `CGAL::Parallel_if_available_tag`
 /// \tparam PointRange a random-access range of points (read through `point_map`)
@@ -175,21 +184,28 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
                 "split_t_junctions: the visitor needs the member functions of Default_split_visitor");
 
   const Kernel kernel = NP_helper::get_geom_traits(np);
-  FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np);
+  // The points, read once (a readable map may return them by value); a vector of points under
+  // the identity map is used as it is. Beyond 2^128 or below 2^-128 the decisions are taken on a
+  // copy scaled by a power of two, with the tolerances scaled alike, as in
+  // `reconstruct_topology()` (internal/coordinate_scale.h).
+  std::vector<typename NP_helper::Point> point_storage;
+  const auto& given_points = NP_helper::points_as_vector(points, np, point_storage);
+  const int exponent = internal::moderate_scale_exponent_of(given_points);
+  FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np, exponent);
   // Per-vertex tolerances: a vertex and a segment are decided with the smallest tolerance of the
   // three points; `eps`, the largest, bounds the searches.
   std::vector<FT> tolerance_storage;
   const std::vector<FT>* tolerances =
-    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "split_t_junctions");
+    internal::read_vertex_tolerances<FT>(np, points.size(), tolerance_storage, "split_t_junctions", exponent);
   if(tolerances != nullptr) eps = internal::largest_tolerance(*tolerances);
   Visitor_given visitor = CGAL::parameters::choose_parameter<Visitor_given>(
     CGAL::parameters::get_parameter(np, CGAL::internal_np::visitor));
-  // The points, read once (a readable map may return them by value); a vector of points under
-  // the identity map is used as it is.
-  std::vector<typename NP_helper::Point> point_storage;
+  const auto& point_vector =
+    exponent == 0 ? given_points : internal::scaled_points(given_points, exponent, point_storage);
   internal::T_junction_splitter<Kernel, Split_report, typename Visitor_type::type> splitter(
-    NP_helper::points_as_vector(points, np, point_storage), tables, kernel, eps, Visitor_type::get(visitor), tolerances);
-  const Split_report report = splitter.template run<ConcurrencyTag>();
+    point_vector, tables, kernel, eps, Visitor_type::get(visitor), tolerances);
+  Split_report report = splitter.template run<ConcurrencyTag>();
+  report.tolerance = std::ldexp(report.tolerance, -exponent);
   // Write the triangles back: the split ones and the new ones.
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {
     const Adjacency_tables::Triangle& tr = tables.triangle(t);

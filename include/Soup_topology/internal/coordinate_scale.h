@@ -88,6 +88,20 @@ int moderate_scale_exponent_of(const std::vector<Point>& points)
   return e;
 }
 
+/// `points` times 2^exponent in `storage` (in place when `points` is `storage`); returns `storage`.
+template <class Point>
+const std::vector<Point>& scaled_points(const std::vector<Point>& points, int exponent, std::vector<Point>& storage)
+{
+  if(&points == &storage) {
+    for(Point& p : storage) p = scaled_point(p, exponent);
+  } else {
+    storage.clear();
+    storage.reserve(points.size());
+    for(const Point& p : points) storage.push_back(scaled_point(p, exponent));
+  }
+  return storage;
+}
+
 } // namespace internal
 } // namespace Soup_topology
 

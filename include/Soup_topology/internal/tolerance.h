@@ -12,6 +12,7 @@
 #include <Soup_topology/parameters.h>
 
 #include <Soup_topology/Adjacency_tables.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/soup_checks.h>
 
 #include <CGAL/Kernel_traits.h>
@@ -288,10 +289,11 @@ struct Soup_np_helper
     }
   }
   /// checks the points (finite) and the tables (they describe `triangles` over `points`), then
-  /// returns the tolerance; throws `Invalid_input` naming `function` otherwise.
+  /// returns the tolerance, times 2^exponent (see `resolve_tolerance()`); throws `Invalid_input`
+  /// naming `function` otherwise.
   template <class TriangleRange>
   static FT checked_tolerance(const char* function, const PointRange& points, const TriangleRange& triangles,
-                              const Adjacency_tables& tables, const NamedParameters& np)
+                              const Adjacency_tables& tables, const NamedParameters& np, int exponent = 0)
   {
     if(tables.number_of_vertices() != points.size() || tables.number_of_triangles() != triangles.size())
       throw Invalid_input(std::string(function) + ": the adjacency tables do not match the soup (" +
@@ -301,7 +303,7 @@ struct Soup_np_helper
                           " triangles in the soup)");
     const Point_map pm = get_point_map(np);
     check_finite_points(points, pm);
-    return resolve_tolerance<FT>(points, pm, np);
+    return resolve_tolerance<FT>(points, pm, np, exponent);
   }
 };
 
