@@ -708,10 +708,10 @@ void clear_keeping_property_maps(PolygonMesh& mesh, long)
 /// (`doc/Soup_topology/Parallel.md`).
 ///
 /// **Scale.** Points whose largest coordinate lies beyond 2^128 or below 2^-128 (a file in
-/// another unit) are repaired scaled in place by the power of two that brings it into [1, 2),
-/// with the tolerances scaled alike, and scaled back; the report's lengths are given at the input's scale. A
-/// power of two changes only exponents: the decisions are those taken on the soup at a moderate
-/// scale, where squared tolerances and distances neither overflow nor underflow
+/// another unit) are repaired scaled by the power of two that brings it into [1, 2), with the
+/// tolerances scaled alike, then scaled back; the report's lengths are given at the input's
+/// scale. A power of two changes only exponents: the decisions are those taken on the soup at a
+/// moderate scale, where squared tolerances and distances neither overflow nor underflow
 /// (`internal/coordinate_scale.h`).
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)

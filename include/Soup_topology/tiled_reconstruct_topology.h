@@ -228,9 +228,10 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
   const double t = settings.tolerance;
   if(!(t >= 0) || !std::isfinite(t))
     throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
-  // The tiles decide with the squared tolerance as it is: unlike the pipeline in memory, they do
-  // not scale a soup at an extreme scale first (internal/coordinate_scale.h). A square that
-  // overflows, or that underflows below the normal numbers (nothing would be welded), is refused.
+  // The plan, the halos and the taint of the tiles work at the input's scale, with the squared
+  // tolerance as it is: unlike the pipeline in memory, the tiled repair does not scale a soup at
+  // an extreme scale first (internal/coordinate_scale.h). A square that overflows, or that falls
+  // below the normal numbers (nothing was welded), is refused.
   if(!std::isfinite(4 * t * t) || (t > 0 && 4 * t * t < std::numeric_limits<double>::min())) {
     char value[32];
     std::snprintf(value, sizeof value, "%g", t);

@@ -19,7 +19,7 @@ namespace Soup_topology {
 namespace internal {
 
 /// the exponent beyond which (in absolute value) the coordinates of a soup are scaled before
-/// they are measured: with the largest coordinate within [2^-128, 2^128], every product the
+/// they are measured: with the largest coordinate within [2^-128, 2^128), every product the
 /// measures and the predicates' filters form (squared lengths and tolerances, cross products,
 /// their squares: up to fourth powers of coordinates and of their differences) is a normal double.
 constexpr int moderate_exponent_bound = 128;

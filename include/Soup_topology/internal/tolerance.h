@@ -160,8 +160,9 @@ void check_vertex_tolerance_map_alone(const NamedParameters& np, const char* fun
 template <class FT, class Value>
 FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* function, int exponent = 0)
 {
+  // (checked as given; the square, at the scale of the points)
   const FT scaled = exponent == 0 ? FT(value) : FT(value) * FT(std::ldexp(1.0, exponent));
-  const double e = CGAL::to_double(scaled);
+  const double e = CGAL::to_double(value);
   const auto text = [](double x) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", x);
@@ -170,7 +171,8 @@ FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* funct
   if(!(e >= 0) || !std::isfinite(e))
     throw Invalid_input(std::string(function) + ": the tolerance of point " + std::to_string(i) +
                         " (vertex_tolerance_map) must be a finite number >= 0 (got " + text(e) + ")");
-  if(!std::isfinite(4 * e * e))
+  const double at_scale = CGAL::to_double(scaled);
+  if(!std::isfinite(4 * at_scale * at_scale))
     throw Invalid_input(std::string(function) + ": the tolerance of point " + std::to_string(i) +
                         " (vertex_tolerance_map) is too large (" + text(e) +
                         "): the square of twice its value overflows a double");
@@ -178,9 +180,10 @@ FT checked_vertex_tolerance(const Value& value, std::size_t i, const char* funct
 }
 
 /// the tolerances of the points 0, ..., n - 1 given by the `vertex_tolerance_map` of `np`, or
-/// `nullptr` when `np` has none (one tolerance for all). They are read once and checked into
-/// `storage`, unless the map is a `Vertex_tolerance_vector` of `n` values (the pipeline's,
-/// already checked), which is used as it is.
+/// `nullptr` when `np` has none (one tolerance for all). They are read once, times 2^exponent
+/// (see `resolve_tolerance()`), and checked into `storage`, unless the map is a
+/// `Vertex_tolerance_vector` of `n` values (the pipeline's, already checked and at the scale of
+/// its points), which is used as it is.
 /// \throws Invalid_input for a bad value, or for a map given with another tolerance parameter.
 template <class FT, class NamedParameters>
 const std::vector<FT>* read_vertex_tolerances(const NamedParameters& np, std::size_t n, std::vector<FT>& storage,
