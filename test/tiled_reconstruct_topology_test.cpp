@@ -807,19 +807,38 @@ TEST(TiledReconstruction, BadArgumentsAreRefused)
                ST::Invalid_input);
   EXPECT_THROW(ST::tiled_reconstruct_topology(source, 0, folder, points, triangles, CGAL::parameters::snapping_tolerance(1.0)),
                ST::Invalid_input);
-  // The tiles decide with the square of the tolerance: one that overflows or underflows (a soup
-  // near 1e-270 repaired at 1e-274 welded nothing) is refused, with the way out.
-  for(const auto& [tolerance, what] : {std::make_pair(1e160, "is too large"), std::make_pair(1e-160, "is too small")}) {
+  // A tolerance whose doubled square overflows is refused; a tiny one is the exact weld, as in
+  // memory.
+  try {
+    ST::tiled_reconstruct_topology(source, 2, folder, points, triangles, CGAL::parameters::snapping_tolerance(1e160));
+    ADD_FAILURE() << "not refused";
+  } catch(const ST::Invalid_input& e) {
+    EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(ST::tiled_reconstruct_topology(source, 2, folder, points, triangles,
+                                                 CGAL::parameters::snapping_tolerance(1e-160)));
+  // Coordinates beyond 2^128 or below 2^-128: the tiles square lengths at the input's scale (near
+  // 1e-270 nothing was welded); refused whatever the tolerance, with the way out (the repair in
+  // memory scales them).
+  for(int k : {-900, -140, 140, 1000}) {
+    Soup far;
+    for(const Point& p : soup.points) far.points.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), 0);
+    far.triangles = soup.triangles;
+    ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> far_source(far.points, far.triangles);
     try {
-      ST::tiled_reconstruct_topology(source, 2, folder, points, triangles, CGAL::parameters::snapping_tolerance(tolerance));
-      ADD_FAILURE() << "not refused: " << tolerance;
+      ST::tiled_reconstruct_topology(far_source, 2, folder, points, triangles,
+                                     CGAL::parameters::snapping_tolerance(0.0));
+      ADD_FAILURE() << "not refused: 2^" << k;
     } catch(const ST::Invalid_input& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("repair without tiles"), std::string::npos) << e.what();
     }
   }
-  EXPECT_NO_THROW(ST::tiled_reconstruct_topology(source, 2, folder, points, triangles,
-                                                 CGAL::parameters::snapping_tolerance(1e-150)));
+  Soup near;
+  for(const Point& p : soup.points) near.points.emplace_back(std::ldexp(p.x(), 120), std::ldexp(p.y(), 120), 0);
+  near.triangles = soup.triangles;
+  ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> near_source(near.points, near.triangles);
+  EXPECT_NO_THROW(ST::tiled_reconstruct_topology(near_source, 2, folder, points, triangles,
+                                                 CGAL::parameters::snapping_tolerance(std::ldexp(1e-3, 120))));
   std::filesystem::remove_all(folder);
 }
 

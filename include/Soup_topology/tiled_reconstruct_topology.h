@@ -14,6 +14,7 @@
 #include <Soup_topology/Soup_tiling.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/tile_parts.h>
 #include <Soup_topology/internal/tile_taint.h>
 
@@ -228,17 +229,11 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
   const double t = settings.tolerance;
   if(!(t >= 0) || !std::isfinite(t))
     throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
-  // The plan, the halos and the taint of the tiles work at the input's scale, with the squared
-  // tolerance as it is: unlike the pipeline in memory, the tiled repair does not scale a soup at
-  // an extreme scale first (internal/coordinate_scale.h). A square that overflows, or that falls
-  // below the normal numbers (nothing was welded), is refused.
-  if(!std::isfinite(4 * t * t) || (t > 0 && 4 * t * t < std::numeric_limits<double>::min())) {
+  if(!std::isfinite(4 * t * t)) {
     char value[32];
     std::snprintf(value, sizeof value, "%g", t);
-    throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance ") + value + " is too " +
-                        (t > 1 ? "large" : "small") + ": the square of twice its value " +
-                        (t > 1 ? "overflows" : "underflows") +
-                        " a double; repair without tiles, where a soup at such a scale is scaled first");
+    throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance is too large (") + value +
+                        "): the square of twice its value overflows a double");
   }
   settings.max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
   settings.do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
@@ -248,6 +243,25 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
     if(!(given > 0) || !std::isfinite(given)) throw Invalid_input("tiled_reconstruct_topology: the halo must be finite and positive");
   }
   return settings;
+}
+
+/// throws `Invalid_input` if the cube of `plan` reaches coordinates beyond 2^128 or below 2^-128
+/// (all of them, in absolute value). The plan, the halos, the depths and the taint of the tiles
+/// square lengths at the input's scale: unlike the pipeline in memory, which scales such a soup
+/// by a power of two first (internal/coordinate_scale.h), the tiled repair cannot decide it
+/// (near 1e-270 the squared tolerance and distances to the tiles rounded to 0 and nothing was
+/// welded). Every process of a team holds the plan and refuses alike.
+inline void check_moderate_scale(const Tile_plan& plan)
+{
+  double largest = 0;
+  for(std::size_t i = 0; i < 3; ++i)
+    largest = std::max({largest, std::abs(plan.origin()[i]), std::abs(plan.origin()[i] + plan.side())});
+  if(moderate_scale_exponent(largest) == 0) return;
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", largest);
+  throw Invalid_input(std::string("tiled_reconstruct_topology: the coordinates reach ") + value +
+                      ", beyond 2^128 or below 2^-128, where squared lengths leave the range of doubles; "
+                      "repair without tiles, where such a soup is scaled by a power of two first");
 }
 
 /// the plan of the tiles, with the halo of the first runs: rank 0 plans and spills `source` into
@@ -472,6 +486,7 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   Tiled_reconstruction_report report;
   report.tolerance = settings.tolerance;
   const Tile_plan plan = internal::plan_and_spill(team, source, number_of_tiles, folder, settings.tolerance, np, report);
+  internal::check_moderate_scale(plan);
   const double halo = plan.halo();
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
