@@ -430,52 +430,60 @@ Soup jittered_patches()
 // The nearest border element of every border vertex, from the two passes of
 // nearest_border_elements(), equals a brute-force search over all border vertices and edges with
 // the same exact radius test and the same preference rules, at radii where most vertices are
-// decided by the first pass and where few are.
+// decided by the first pass and where few are. Also with the soup scaled by 1e150, where squared
+// distances to edges overflow: an infinite distance is no answer, for the search as for the brute
+// force (analyze_gaps() scales such a soup by a power of two first, and never searches it so).
 TEST(GapAnalysis, NearestBorderElementsMatchBruteForce)
 {
   const Soup s = jittered_patches();
-  const std::vector<Point>& points = s.points;
   const std::vector<Triangle>& triangles = s.triangles;
-  const ST::Adjacency_tables tables(triangles, points.size());
+  const ST::Adjacency_tables tables(triangles, s.points.size());
   const std::vector<std::size_t> border = ST::internal::border_vertices(tables);
   ASSERT_GT(border.size(), 40u);
   const Epick gt;
   auto squared_distance = gt.compute_squared_distance_3_object();
   auto compare = gt.compare_squared_distance_3_object();
-  for(double radius : {1e-4, 0.01, 0.05, 0.2, 2.0}) {
-    const auto found = ST::internal::nearest_border_elements(points, tables, border, radius, gt);
-    ASSERT_EQ(found.size(), border.size());
-    const double r2 = radius * radius;
-    std::size_t decided = 0;
-    for(std::size_t k = 0; k < border.size(); ++k) {
-      const std::size_t v = border[k];
-      ST::internal::Nearest_border_element best;
-      for(std::size_t w : border) {
-        if(w == v || ST::internal::share_a_triangle(tables, v, w) ||
-           compare(points[v], points[w], r2) == CGAL::LARGER)
-          continue;
-        const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], points[w])));
-        if(d < best.distance || (d == best.distance && w < best.vertex)) { best.distance = d; best.vertex = w; }
-      }
-      for(std::size_t t = 0; t < triangles.size(); ++t)
-        for(int i = 0; i < 3; ++i) {
-          const auto tt = static_cast<ST::Adjacency_tables::size_type>(t);
-          const Triangle& tr = triangles[t];
-          if(!tables.is_border_edge(tt, i) || tr[0] == v || tr[1] == v || tr[2] == v) continue;
-          const Epick::Segment_3 s(points[tr[std::size_t(i)]], points[tr[std::size_t((i + 1) % 3)]]);
-          if(compare(points[v], s, r2) == CGAL::LARGER) continue;
-          const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], s)));
-          if(d < best.distance) { best.distance = d; best.vertex = std::size_t(-1); best.edge = {tt, i}; }
+  for(double scale : {1.0, 1e150}) {
+    std::vector<Point> points;
+    for(const Point& p : s.points) points.emplace_back(p.x() * scale, p.y() * scale, p.z() * scale);
+    for(double unit_radius : {1e-4, 0.01, 0.05, 0.2, 2.0}) {
+      const double radius = unit_radius * scale;
+      const auto found = ST::internal::nearest_border_elements(points, tables, border, radius, gt);
+      ASSERT_EQ(found.size(), border.size());
+      const double r2 = radius * radius;
+      std::size_t decided = 0;
+      for(std::size_t k = 0; k < border.size(); ++k) {
+        const std::size_t v = border[k];
+        ST::internal::Nearest_border_element best;
+        for(std::size_t w : border) {
+          if(w == v || ST::internal::share_a_triangle(tables, v, w) ||
+             compare(points[v], points[w], r2) == CGAL::LARGER)
+            continue;
+          const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], points[w])));
+          if(d < best.distance || (d == best.distance && w < best.vertex)) { best.distance = d; best.vertex = w; }
         }
-      EXPECT_EQ(found[k].distance, best.distance) << "radius " << radius << ", vertex " << v;
-      EXPECT_EQ(found[k].vertex, best.vertex) << "radius " << radius << ", vertex " << v;
-      EXPECT_EQ(found[k].edge, best.edge) << "radius " << radius << ", vertex " << v;
-      if(best.distance < radius * ST::internal::first_gap_pass_fraction) ++decided;
-    }
-    // Both passes are exercised: some answers lie within the first radius, some beyond.
-    if(radius == 0.2) {
-      EXPECT_GT(decided, 0u);
-      EXPECT_LT(decided, border.size());
+        for(std::size_t t = 0; t < triangles.size(); ++t)
+          for(int i = 0; i < 3; ++i) {
+            const auto tt = static_cast<ST::Adjacency_tables::size_type>(t);
+            const Triangle& tr = triangles[t];
+            if(!tables.is_border_edge(tt, i) || tr[0] == v || tr[1] == v || tr[2] == v) continue;
+            const Epick::Segment_3 e(points[tr[std::size_t(i)]], points[tr[std::size_t((i + 1) % 3)]]);
+            if(compare(points[v], e, r2) == CGAL::LARGER) continue;
+            const double d = std::sqrt(CGAL::to_double(squared_distance(points[v], e)));
+            if(d < best.distance) { best.distance = d; best.vertex = std::size_t(-1); best.edge = {tt, i}; }
+          }
+        const std::string where = "scale " + std::to_string(scale) + ", radius " + std::to_string(unit_radius) +
+                                  ", vertex " + std::to_string(v);
+        EXPECT_EQ(found[k].distance, best.distance) << where;
+        EXPECT_EQ(found[k].vertex, best.vertex) << where;
+        EXPECT_EQ(found[k].edge, best.edge) << where;
+        if(best.distance < radius * ST::internal::first_gap_pass_fraction) ++decided;
+      }
+      // Both passes are exercised: some answers lie within the first radius, some beyond.
+      if(unit_radius == 0.2) {
+        EXPECT_GT(decided, 0u);
+        EXPECT_LT(decided, border.size());
+      }
     }
   }
 }
