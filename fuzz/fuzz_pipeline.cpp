@@ -22,6 +22,7 @@
 #include <Soup_topology/split_t_junctions.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -199,9 +200,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     valid = valid && t[0] != t[1] && t[1] != t[2] && t[2] != t[0];
   }
   for(const Point& p : points) valid = valid && finite(p);
-  double absolute = tol;
+  // The tolerance is checked at the scale the pipeline decides at: points whose largest coordinate
+  // lies beyond 2^128 or below 2^-128 are scaled by a power of two first, the tolerance with them.
+  const int exponent = valid ? ST::internal::moderate_scale_exponent_of(points) : 0;
+  double absolute = std::ldexp(tol, exponent);
   if(relative && tol > 0 && valid)
-    absolute = tol * ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+    absolute =
+      tol * std::ldexp(ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>()), exponent);
   valid = valid && tol >= 0 && std::isfinite(tol) && std::isfinite(absolute) && std::isfinite(4 * absolute * absolute);
 
   if(relative)
