@@ -203,6 +203,103 @@ TEST(HtmlReportDecimation, PageOfALargeSoupIsSimplified)
   EXPECT_NE(data.find("\"decimated\": true"), std::string::npos);
 }
 
+// The value of `"key": ` in `data`, up to the next `,` or `}` (the first occurrence).
+std::string json_value(const std::string& data, const std::string& key)
+{
+  const std::string opening = "\"" + key + "\": ";
+  const std::size_t begin = data.find(opening);
+  if(begin == std::string::npos) return "<missing>";
+  const std::size_t text = begin + opening.size();
+  return data.substr(text, data.find_first_of(",}", text) - text);
+}
+
+// The floats of the base64 text of `"key": "..."` in `data`.
+std::vector<float> base64_floats(const std::string& data, const std::string& key)
+{
+  std::string text = json_value(data, key);
+  text = text.substr(1, text.size() - 2);
+  static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  std::uint32_t bits = 0;
+  int count = 0;
+  for(char c : text) {
+    if(c == '=') break;
+    bits = (bits << 6) | static_cast<std::uint32_t>(alphabet.find(c));
+    if((count += 6) >= 8) {
+      count -= 8;
+      bytes.push_back(static_cast<unsigned char>((bits >> count) & 0xFF));
+    }
+  }
+  std::vector<float> values(bytes.size() / sizeof(float));
+  std::copy(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(values.size() * sizeof(float)),
+            reinterpret_cast<unsigned char*>(values.data()));
+  return values;
+}
+
+// The 3D view of a soup does not depend on its unit: a soup scaled by 2^k (exact) is drawn at the
+// same float coordinates in the view's unit, near 1e-270 and near 1e300 as at 1 (where float
+// coordinates relative to the center used to underflow to 0 or overflow), with the lengths of
+// the holes in the soup's unit; simplified above the display limit the same way.
+TEST(HtmlReportScale, TheViewOfASoupDoesNotDependOnItsUnit)
+{
+  for(const std::size_t limit : {std::size_t(1) << 20, std::size_t(60)}) {
+    SCOPED_TRACE("display triangle limit " + std::to_string(limit));
+    std::vector<Point> points;
+    std::vector<Triangle> triangles;
+    grid(12, 4, 7, points, triangles);  // a 12 x 12 square with a 3 x 3 hole
+    // Far from the origin, so that the view's origin matters.
+    for(Point& p : points) p = Point(p.x() + 1000, p.y() - 64, p.z());
+    std::vector<std::string> data_at;
+    std::vector<std::vector<float>> positions_at;
+    const int exponents[] = {-900, -40, -20, 0, 20, 40, 1000};
+    for(const int k : exponents) {
+      std::vector<Point> scaled;
+      for(const Point& p : points)
+        scaled.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+      ST::IO::Html_report_content content;
+      content.display_triangle_limit = limit;
+      content.welded_vertices.count = 1;
+      content.welded_vertices.positions = {{scaled[5].x(), scaled[5].y(), 0}};
+      data_at.push_back(element_text(page_of(scaled, triangles, content),
+                                     "<script type=\"application/json\" id=\"viewer-data\">"));
+      positions_at.push_back(base64_floats(data_at.back(), "positions"));
+    }
+    // The square is 12 wide: its half extent 6 (times 2^k) stays in the soup's unit while it
+    // lies within 2^+-32; beyond, it is brought between 1 and 2: the view's unit is then 2^-2
+    // times that of the soup at k = 0, and the page is the same, to the bit, for every such k.
+    const int view_exponents[] = {898, 38, 0, 0, 0, -42, -1002};
+    const std::size_t at_one = 3, beyond = 0;
+    ASSERT_FALSE(positions_at[at_one].empty());
+    for(std::size_t i = 0; i < std::size(exponents); ++i) {
+      SCOPED_TRACE("soup scaled by 2^" + std::to_string(exponents[i]));
+      const std::string& data = data_at[i];
+      const int view_exponent = view_exponents[i];
+      EXPECT_EQ(json_value(data, "view_exponent"), std::to_string(view_exponent));
+      EXPECT_EQ(json_value(data, "decimated"), limit < 1000 ? "true" : "false");
+      EXPECT_EQ(json_value(data, "triangles"), json_value(data_at[at_one], "triangles"));
+      EXPECT_EQ(json_value(data, "border_edges"), json_value(data_at[at_one], "border_edges"));
+      EXPECT_EQ(json_value(data, "displayed_triangles"), json_value(data_at[at_one], "displayed_triangles"));
+      const float view_scale = static_cast<float>(std::ldexp(1.0, exponents[i] + view_exponent));
+      // In the soup's unit the points are drawn as at k = 0, times 2^k; in another unit, as at
+      // every other k beyond the range; and either way as at k = 0 up to float rounding.
+      const std::vector<float>& same = view_exponent == 0 ? positions_at[at_one] : positions_at[beyond];
+      const float same_scale = view_exponent == 0 ? 1.0f : 0.25f;
+      ASSERT_EQ(positions_at[i].size(), same.size());
+      ASSERT_EQ(positions_at[i].size(), positions_at[at_one].size());
+      for(std::size_t c = 0; c < same.size(); ++c) {
+        ASSERT_EQ(positions_at[i][c], same[c] / same_scale * view_scale) << "coordinate " << c;
+        ASSERT_NEAR(positions_at[i][c], positions_at[at_one][c] * view_scale, 1e-5 * view_scale) << "coordinate " << c;
+      }
+      // The length of the longest hole (the outer border, 48 long) in the soup's unit; the
+      // marker in the view's.
+      EXPECT_EQ(json_value(data, "length"), ST::internal::html_json_number(std::ldexp(48.0, exponents[i])));
+      const std::string marker = "[" + ST::internal::html_json_float(-1 * view_scale) + "," +
+                                 ST::internal::html_json_float(-6 * view_scale) + ",0]";
+      EXPECT_NE(data.find("\"welded_vertices\": [" + marker + "]"), std::string::npos) << data.substr(0, 600);
+    }
+  }
+}
+
 TEST(HtmlReport, WritesTheNonManifoldEdges)
 {
   // Three triangles on the edge (0, 1): one non-manifold edge, six border edges.

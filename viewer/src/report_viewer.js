@@ -40,6 +40,15 @@ function format_length(x) {
 }
 
 const data = JSON.parse(document.getElementById('viewer-data').textContent);
+// The view draws a point p of the soup at (p - origin) * 2^view_exponent (a unit that keeps the
+// digits of float coordinates at any scale); lengths shown in the panel are in the soup's unit.
+const view_exponent = data.view_exponent || 0;
+function times_power_of_two(x, e) {
+  const half = Math.trunc(e / 2);
+  return x * 2 ** half * 2 ** (e - half);
+}
+const to_view_length = (x) => times_power_of_two(x, view_exponent);
+const to_soup_coordinate = (x, axis) => times_power_of_two(x, -view_exponent) + data.origin[axis];
 const canvas = document.getElementById('view');
 const panel = document.getElementById('panel');
 
@@ -231,8 +240,8 @@ function open_problems() {
     text: `hole: ${h.edges} border edges, length ${format_length(h.length)}, size ${format_length(h.size)}`,
   }));
   const sites = (data.markers.ambiguous_sites || []).slice(0, listed_sites).map((p) => ({
-    kind: 'ambiguous', center: p, radius: data.tolerance || whole_distance / 1000,
-    text: `ambiguous site at ${p.map((c, i) => format_length(c + data.origin[i])).join(', ')}`,
+    kind: 'ambiguous', center: p, radius: data.tolerance ? to_view_length(data.tolerance) : whole_distance / 1000,
+    text: `ambiguous site at ${p.map((c, i) => format_length(to_soup_coordinate(c, i))).join(', ')}`,
   }));
   panel.append(element('h2', {}, 'Open problems'));
   const site_count = data.marker_counts.ambiguous_sites;

@@ -321,16 +321,36 @@ Html_soup html_soup(const PointRange& points, const TriangleRange& triangles, co
   return soup;
 }
 
-/// the center of the bounding box of `points` (the origin of the coordinates written in float).
-inline Html_point html_center(const std::vector<Html_point>& points)
+/// the center of the bounding box of `points` (the origin of the coordinates written in float),
+/// and in `half_extent` the largest half side of that box. Halves are added rather than the
+/// sum halved so that coordinates near the largest double do not overflow (the same value
+/// otherwise: halving a normal double is exact).
+inline Html_point html_center(const std::vector<Html_point>& points, double& half_extent)
 {
   Html_point origin{0, 0, 0};
+  half_extent = 0;
   if(points.empty()) return origin;
   Html_point low = points.front(), high = points.front();
   for(const Html_point& p : points)
     for(std::size_t c = 0; c < 3; ++c) { low[c] = std::min(low[c], p[c]); high[c] = std::max(high[c], p[c]); }
-  for(std::size_t c = 0; c < 3; ++c) origin[c] = (low[c] + high[c]) / 2;
+  for(std::size_t c = 0; c < 3; ++c) {
+    origin[c] = low[c] / 2 + high[c] / 2;
+    half_extent = std::max(half_extent, high[c] / 2 - low[c] / 2);
+  }
   return origin;
+}
+
+/// the exponent e of the view's unit: the page writes the points at `(p - origin) * 2^e`, in
+/// float. It is 0 (the soup's own unit) when the half extent of the soup lies between 2^-32 and
+/// 2^32; otherwise the half extent becomes a length between 1 and 2. Beyond that range, float
+/// coordinates relative to the center would lose their digits to underflow or overflow (a soup
+/// near 1e-270 was drawn as one point, one near 1e300 not at all), and so would the viewer's
+/// camera, which works in float on the GPU. A power of two changes no digit of a coordinate.
+inline int html_view_exponent(double half_extent)
+{
+  if(!(half_extent > 0) || !std::isfinite(half_extent)) return 0;
+  if(half_extent >= std::ldexp(1.0, -32) && half_extent < std::ldexp(1.0, 32)) return 0;
+  return -std::ilogb(half_extent);
 }
 
 /// `values` as a JSON array of strings.
@@ -341,12 +361,33 @@ inline std::string html_json_strings(const std::vector<std::string>& values)
   return out + "]";
 }
 
-/// `p - origin` as a JSON array of three floats.
-inline std::string html_json_relative_point(const Html_point& p, const Html_point& origin)
+/// where the page's coordinates are: a point `p` of the soup is drawn at `(p - origin) * 2^exponent`.
+struct Html_view
 {
-  return '[' + html_json_float(static_cast<float>(p[0] - origin[0])) + ',' +
-         html_json_float(static_cast<float>(p[1] - origin[1])) + ',' +
-         html_json_float(static_cast<float>(p[2] - origin[2])) + ']';
+  Html_point origin{0, 0, 0};
+  int exponent = 0;
+
+  /// `p`, in the soup's coordinates, in the view's. A larger unit scales first, so that a
+  /// difference of coordinates near the largest double does not overflow; a smaller one scales
+  /// the difference, so that a small soup far from the origin does not overflow either.
+  Html_point to_view(const Html_point& p) const
+  {
+    Html_point q;
+    for(std::size_t c = 0; c < 3; ++c)
+      q[c] = exponent <= 0 ? std::ldexp(p[c], exponent) - std::ldexp(origin[c], exponent)
+                           : std::ldexp(p[c] - origin[c], exponent);
+    return q;
+  }
+  /// a length of the view as a length of the soup.
+  double to_soup_length(double length) const { return std::ldexp(length, -exponent); }
+};
+
+/// `view.to_view(p)` as a JSON array of three floats.
+inline std::string html_json_relative_point(const Html_point& p, const Html_view& view)
+{
+  const Html_point q = view.to_view(p);
+  return '[' + html_json_float(static_cast<float>(q[0])) + ',' + html_json_float(static_cast<float>(q[1])) + ',' +
+         html_json_float(static_cast<float>(q[2])) + ']';
 }
 
 /// the text of the side panel: title, tolerance, notes, table and gap histogram.
@@ -366,24 +407,28 @@ inline void write_html_tables(std::ostream& os, const IO::Html_report_content& c
   os << "], \"gap_note\": " << html_script_safe(html_json_string(content.gap_note));
 }
 
-/// the holes, longest first (at most `listed` of them), their centers relative to `origin`.
-inline void write_html_holes(std::ostream& os, const std::vector<Html_hole>& holes, const Html_point& origin)
+/// the holes, longest first (at most `listed` of them), measured on the points `points_origin`
+/// away from the view's origin, in the view's unit: their lengths and sizes in the soup's unit,
+/// their radii and centers in the view's.
+inline void write_html_holes(std::ostream& os, const std::vector<Html_hole>& holes, const Html_point& points_origin,
+                             const Html_view& view)
 {
   constexpr std::size_t listed = 500;
   os << ", \"holes_total\": " << holes.size() << ", \"holes\": [";
   for(std::size_t i = 0; i < std::min(holes.size(), listed); ++i) {
     const Html_hole& h = holes[i];
-    os << (i ? ", " : "") << "{\"edges\": " << h.edges << ", \"length\": " << html_json_number(h.length)
-       << ", \"size\": " << html_json_number(h.size) << ", \"radius\": " << html_json_number(h.size / 2)
-       << ", \"center\": [" << html_json_number(h.center[0] - origin[0]) << ", "
-       << html_json_number(h.center[1] - origin[1]) << ", " << html_json_number(h.center[2] - origin[2]) << "]}";
+    os << (i ? ", " : "") << "{\"edges\": " << h.edges << ", \"length\": " << html_json_number(view.to_soup_length(h.length))
+       << ", \"size\": " << html_json_number(view.to_soup_length(h.size)) << ", \"radius\": " << html_json_number(h.size / 2)
+       << ", \"center\": [" << html_json_number(h.center[0] - points_origin[0]) << ", "
+       << html_json_number(h.center[1] - points_origin[1]) << ", " << html_json_number(h.center[2] - points_origin[2])
+       << "]}";
   }
   os << ']';
 }
 
-/// the counts and the positions (relative to `origin`, at most `IO::html_report_marker_limit`) of
-/// every marker kind.
-inline void write_html_markers(std::ostream& os, const IO::Html_report_content& content, const Html_point& origin)
+/// the counts and the positions (in the view's coordinates, at most `IO::html_report_marker_limit`)
+/// of every marker kind.
+inline void write_html_markers(std::ostream& os, const IO::Html_report_content& content, const Html_view& view)
 {
   const std::pair<const char*, const IO::Html_report_sites*> kinds[] = {
     {"welded_vertices", &content.welded_vertices}, {"t_junction_splits", &content.t_junction_splits},
@@ -397,26 +442,26 @@ inline void write_html_markers(std::ostream& os, const IO::Html_report_content& 
     const std::vector<std::array<double, 3>>& positions = kinds[k].second->positions;
     os << (k ? ", " : "") << '"' << kinds[k].first << "\": [";
     for(std::size_t i = 0; i < std::min(positions.size(), IO::html_report_marker_limit); ++i)
-      os << (i ? "," : "") << html_json_relative_point(positions[i], origin);
+      os << (i ? "," : "") << html_json_relative_point(positions[i], view);
     os << ']';
   }
   os << '}';
 }
 
-/// the display mesh: its size, and its points (relative to `origin`, in float), triangles and
-/// edges in base64.
+/// the display mesh: its size, and its points (`points_origin` away from the view's origin, in
+/// float), triangles and edges in base64; the view's origin and exponent.
 inline void write_html_display_mesh(std::ostream& os, const Html_display_mesh& display, std::size_t soup_triangles,
-                                    std::size_t limit, const Html_point& origin)
+                                    std::size_t limit, const Html_point& points_origin, const Html_view& view)
 {
   std::vector<float> positions;
   positions.reserve(3 * display.points.size());
   for(const Html_point& p : display.points)
-    for(std::size_t c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - origin[c]));
+    for(std::size_t c = 0; c < 3; ++c) positions.push_back(static_cast<float>(p[c] - points_origin[c]));
   std::vector<std::uint32_t> indices;
   indices.reserve(3 * display.triangles.size());
   for(const Html_triangle& t : display.triangles) indices.insert(indices.end(), t.begin(), t.end());
-  os << ", \"origin\": [" << html_json_number(origin[0]) << ", " << html_json_number(origin[1]) << ", "
-     << html_json_number(origin[2]) << "]";
+  os << ", \"origin\": [" << html_json_number(view.origin[0]) << ", " << html_json_number(view.origin[1]) << ", "
+     << html_json_number(view.origin[2]) << "], \"view_exponent\": " << view.exponent;
   os << ", \"soup_triangles\": " << soup_triangles << ", \"displayed_triangles\": " << display.triangles.size()
      << ", \"display_triangle_limit\": " << limit << ", \"decimated\": " << (display.decimated ? "true" : "false");
   os << ", \"positions\": \"" << html_base64(positions) << '"';
@@ -500,8 +545,21 @@ void write_html_report(std::ostream& os, const PointRange& points, const Triangl
 {
   namespace in = ::Soup_topology::internal;
   // The tables and the holes, on the full soup.
-  const in::Html_soup soup =
+  in::Html_soup soup =
     in::html_soup(points, triangles, in::Soup_np_helper<PointRange, NamedParameters>::get_point_map(np));
+  // The view: coordinates are written relative to the center of the bounding box, in float, in
+  // a unit that keeps their digits (`html_view_exponent()`). In the soup's own unit, the points
+  // are used as they are; in another, they are moved into the view's coordinates first, and so
+  // the holes and the display mesh are computed there.
+  double half_extent = 0;
+  in::Html_view view;
+  view.origin = in::html_center(soup.points, half_extent);
+  view.exponent = in::html_view_exponent(half_extent);
+  in::Html_point points_origin = view.origin;
+  if(view.exponent != 0) {
+    for(in::Html_point& p : soup.points) p = view.to_view(p);
+    points_origin = {0, 0, 0};
+  }
   const Adjacency_tables tables(soup.triangles, soup.points.size());
   const std::vector<std::uint32_t> border = in::html_edge_vertices(tables, tables.border_edges());
   const std::vector<std::uint32_t> non_manifold = in::html_edge_vertices(tables, tables.non_manifold_edges());
@@ -509,15 +567,13 @@ void write_html_report(std::ostream& os, const PointRange& points, const Triangl
   // The display mesh, simplified above the limit.
   const in::Html_display_mesh display =
     in::html_display_mesh(soup.points, soup.triangles, border, non_manifold, content.display_triangle_limit);
-  // The markers and the page; coordinates are written relative to the center of the bounding
-  // box, in float.
-  const in::Html_point origin = in::html_center(soup.points);
+  // The markers and the page.
   in::write_html_page_head(os, content);
   os << "<script type=\"application/json\" id=\"viewer-data\">{";
   in::write_html_tables(os, content);
-  in::write_html_markers(os, content, origin);
-  in::write_html_holes(os, holes, origin);
-  in::write_html_display_mesh(os, display, soup.triangles.size(), content.display_triangle_limit, origin);
+  in::write_html_markers(os, content, view);
+  in::write_html_holes(os, holes, points_origin, view);
+  in::write_html_display_mesh(os, display, soup.triangles.size(), content.display_triangle_limit, points_origin, view);
   os << "}</script>\n";
   in::write_html_page_scripts(os, content);
 }
