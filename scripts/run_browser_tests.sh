@@ -63,6 +63,17 @@ if [ -f "$data/cad/ALSTOM_TEST4.off" ]; then
     --html "$work/alstom.html" > "$work/alstom.json"
   run_check "ALSTOM_TEST4, tolerance 0.1 (open)" --page "$work/alstom.html" --json "$work/alstom.json" \
     --screenshot "$work/alstom.png" --red yes --markers yes
+  # The same part in other units, near 1e-270 and near 1e300 (times 2^-900 and 2^1000, exact):
+  # the view must be drawn as at 1 (float coordinates relative to the center used to underflow
+  # to a point and overflow to nothing).
+  for k in -900 1000; do
+    node test/browser/scale_off.mjs "$data/cad/ALSTOM_TEST4.off" "$work/alstom_$k.off" "$k"
+    "$tool" repair "$work/alstom_$k.off" -o "$work/alstom_${k}_repaired.off" \
+      --tolerance "$(node -e "console.log(String(0.1 * 2 ** ($k / 2) * 2 ** ($k / 2)))")" --json \
+      --html "$work/alstom_$k.html" > "$work/alstom_$k.json"
+    run_check "ALSTOM_TEST4 times 2^$k, tolerance 0.1 times 2^$k (open)" --page "$work/alstom_$k.html" \
+      --json "$work/alstom_$k.json" --screenshot "$work/alstom_$k.png" --red yes --markers yes
+  done
 else
   echo "== ALSTOM_TEST4 SKIPPED: $data/cad/ALSTOM_TEST4.off not found"
   skipped=$((skipped + 1))
