@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the determinism tests (test/parallel_test.cpp, and the command-line tool the test
-# programs depend on) with ThreadSanitizer in a separate build folder and runs them: every
+# Builds the determinism tests (test/parallel_test.cpp and test/parallel_other_steps_test.cpp,
+# two programs compiled at the same time, without the tests' precompiled header, which would be
+# compiled first, alone) with ThreadSanitizer in a separate build folder and runs them: every
 # function taking a ConcurrencyTag runs on 8 threads (the Release build runs them on 1, 2, 3 and
 # 8), and any data race reported fails (halt_on_error=1). No report is suppressed.
 # Debian's libtbb is not built with ThreadSanitizer, and TBB hands its tasks over inside the
@@ -21,8 +22,10 @@ cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
       -DSOUP_TOPOLOGY_WITH_TBB=ON -DSOUP_TOPOLOGY_BUILD_TESTS=ON -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON \
       -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF -DSOUP_TOPOLOGY_BUILD_FUZZERS=OFF \
-      -DSOUP_TOPOLOGY_TEST_PROGRAMS="parallel_test" > /dev/null
-cmake --build "$build" --target parallel_test -j "$jobs"
+      -DSOUP_TOPOLOGY_TEST_PROGRAMS="parallel_test;parallel_other_steps_test" \
+      -DSOUP_TOPOLOGY_TEST_PRECOMPILED_HEADER=OFF > /dev/null
+# One make for both (cmake --build with two targets builds one after the other).
+make -C "$build/test" -j "$jobs"
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
 # One process per test, JOBS at a time (many tests run one thread for a part of their time); a
 # report stops its process, so the test fails and ctest prints the report.
