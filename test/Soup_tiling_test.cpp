@@ -246,7 +246,7 @@ TEST(SoupTiling, SpillFilesOfAStreamedBinarySTL)
   std::vector<Triangle> triangles;
   exploded_sheet(30, 1e-5, 5, points, triangles);
   // float coordinates, as the STL holds them
-  for(Point& p : points) p = Point(float(p.x()), float(p.y()), float(p.z()));
+  for(Point& p : points) p = soup_test::rounded_to_float(p);
   const std::string folder = soup_test::temporary_folder("tiling");
   const std::string file = folder + "/sheet.stl";
   {

@@ -126,7 +126,7 @@ TEST_F(MpiRepair, JitteredSeamsGiveTheSingleProcessFile)
                                     CGAL::square(box.zmax() - box.zmin()));
   auto soup = soup_test::t_junction_soup(points, triangles, 6, 1e-6 * diagonal, 5);
   // The points as an STL holds them.
-  for(Point& p : soup.points) p = Point(float(p.x()), float(p.y()), float(p.z()));
+  for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
   const std::string in = folder_ + "/seams.stl";
   ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
   spill_ = folder_ + "/spill";

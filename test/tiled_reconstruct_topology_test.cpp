@@ -644,7 +644,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
   const double d = diagonal(mesh.points);
   auto soup = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
-  for(Point& p : soup.points) p = Point(float(p.x()), float(p.y()), float(p.z()));
+  for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
   const std::string folder = soup_test::temporary_folder("tiled_memory");
   const std::string in = folder + "/soup.stl";
   ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
