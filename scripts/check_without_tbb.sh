@@ -16,7 +16,8 @@ programs=(parallel_test parallel_other_steps_test)
 cmake -S . -B "$build" -G "Unix Makefiles" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_WITH_TBB=OFF \
       -DSOUP_TOPOLOGY_BUILD_TESTS=ON -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON \
       -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF -DSOUP_TOPOLOGY_BUILD_FUZZERS=OFF \
-      -DSOUP_TOPOLOGY_TEST_PRECOMPILED_HEADER=OFF -DSOUP_TOPOLOGY_TEST_PROGRAMS="$(IFS=";"; echo "${programs[*]}")" > /dev/null
+      -DSOUP_TOPOLOGY_TEST_PRECOMPILED_HEADER=OFF \
+      -DSOUP_TOPOLOGY_TEST_PROGRAMS="$(IFS=";"; echo "${programs[*]}")" > /dev/null
 for program in "${programs[@]}"; do
   if grep -q "TBB::tbb\|CGAL_LINKED_WITH_TBB" "$build/test/CMakeFiles/$program.dir/flags.make" \
                                            "$build/test/CMakeFiles/$program.dir/link.txt"; then

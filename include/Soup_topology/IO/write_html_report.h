@@ -417,8 +417,10 @@ inline void write_html_holes(std::ostream& os, const std::vector<Html_hole>& hol
   os << ", \"holes_total\": " << holes.size() << ", \"holes\": [";
   for(std::size_t i = 0; i < std::min(holes.size(), listed); ++i) {
     const Html_hole& h = holes[i];
-    os << (i ? ", " : "") << "{\"edges\": " << h.edges << ", \"length\": " << html_json_number(view.to_soup_length(h.length))
-       << ", \"size\": " << html_json_number(view.to_soup_length(h.size)) << ", \"radius\": " << html_json_number(h.size / 2)
+    os << (i ? ", " : "") << "{\"edges\": " << h.edges
+       << ", \"length\": " << html_json_number(view.to_soup_length(h.length))
+       << ", \"size\": " << html_json_number(view.to_soup_length(h.size))
+       << ", \"radius\": " << html_json_number(h.size / 2)
        << ", \"center\": [" << html_json_number(h.center[0] - points_origin[0]) << ", "
        << html_json_number(h.center[1] - points_origin[1]) << ", " << html_json_number(h.center[2] - points_origin[2])
        << "]}";
