@@ -28,24 +28,26 @@ step_done() { echo "== $1: $((SECONDS - step_start)) s"; step_start=$SECONDS; }
 # three.js for the HTML report's viewer (npm ci in viewer/), inlined when the build is configured.
 bash scripts/setup_viewer.sh
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSOUP_TOPOLOGY_BUILD_TESTS=ON \
-      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF
-# The benchmarks are run on demand from a Release build (doc/Soup_topology/Performance.md); here
-# they are only compiled and linked, without optimisation (much cheaper to compile), in a folder
-# of their own whose programs are not for measuring; with clang when it is installed (the fuzz
-# set of setup.sh): it compiles them in about half the time of g++, and so the package is
-# compiled by a second compiler.
-benchmark_build="$build-benchmarks-unoptimised"
-benchmark_compiler=()
-command -v clang++ > /dev/null && benchmark_compiler=(-DCMAKE_CXX_COMPILER=clang++)
-cmake -S . -B "$benchmark_build" ${benchmark_compiler[@]+"${benchmark_compiler[@]}"} \
+      -DSOUP_TOPOLOGY_BUILD_TOOL=ON -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=OFF
+# The benchmarks are run on demand from a Release build (doc/Soup_topology/Performance.md), and
+# the examples are short programs that show the API: here both are compiled and linked without
+# optimisation (much cheaper to compile), in a folder of their own whose programs are not for
+# measuring, and the examples are run there; with clang when it is installed (the fuzz set of
+# setup.sh): it compiles them in about half the time of g++, and so the package is compiled by a
+# second compiler. (The examples took about 260 s of compilation at -O3 with g++.)
+unoptimised_build="$build-unoptimised"
+unoptimised_compiler=()
+command -v clang++ > /dev/null && unoptimised_compiler=(-DCMAKE_CXX_COMPILER=clang++)
+cmake -S . -B "$unoptimised_build" ${unoptimised_compiler[@]+"${unoptimised_compiler[@]}"} \
       -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0" \
-      -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE -DSOUP_TOPOLOGY_BUILD_TESTS=OFF \
-      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=OFF -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=ON > /dev/null
+      -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE -DSOUP_TOPOLOGY_BUILD_TESTS=OFF -DSOUP_TOPOLOGY_BUILD_TOOL=OFF \
+      -DSOUP_TOPOLOGY_BUILD_EXAMPLES=ON -DSOUP_TOPOLOGY_BUILD_BENCHMARKS=ON > /dev/null
 step_done "packages and configuration"
 cmake --build "$build" -j "$jobs"
-step_done "Release build (tests, examples, tool)"
-cmake --build "$benchmark_build" -j "$jobs"
-step_done "benchmarks compiled (unoptimised)"
+step_done "Release build (tests, tool)"
+cmake --build "$unoptimised_build" -j "$jobs"
+ctest --test-dir "$unoptimised_build" --output-on-failure --no-tests=error -j "$jobs" -R '^example\.'
+step_done "benchmarks and examples compiled (unoptimised), examples run"
 # The tests run one process each, JOBS at a time; a test that runs the tool waits for it, so
 # there are never more than JOBS busy processes.
 ctest --test-dir "$build" --output-on-failure --no-tests=error -j "$jobs"
