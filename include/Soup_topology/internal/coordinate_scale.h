@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -43,11 +44,16 @@ double largest_coordinate(const Point& p)
 /// every distance computed on them, scaled back, is the one computed on the soup at a moderate
 /// scale, scaled, to the bit (the rounding of `+ - * / sqrt` does not depend on the exponents
 /// while the results are normal numbers), and the exact predicates decide the same.
+///
+/// The exponent is at most 1023, so that 2^e is itself a double (the scaling multiplies by it):
+/// a soup whose largest coordinate is subnormal (down to 2^-1074) is brought near 2^-51 instead
+/// of [1, 2), still within the moderate range.
 inline int moderate_scale_exponent(double largest)
 {
   if(!(largest > 0) || !std::isfinite(largest)) return 0;
   const int e = std::ilogb(largest);
-  return e >= -moderate_exponent_bound && e < moderate_exponent_bound ? 0 : -e;
+  if(e >= -moderate_exponent_bound && e < moderate_exponent_bound) return 0;
+  return std::min(-e, std::numeric_limits<double>::max_exponent - 1);
 }
 
 /// `true` if the coordinates of `p` times 2^e are exact: always with an exact number type; with
