@@ -28,6 +28,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <set>
@@ -1359,6 +1360,42 @@ TEST(Pipeline, RepairDoesNotDependOnTheScale)
   std::vector<Triangle> t = inputs[0].triangles;
   EXPECT_THROW(ST::reconstruct_topology(far, t, CGAL::parameters::snapping_tolerance(-1.0)), ST::Invalid_input);
   EXPECT_EQ(far, far0);
+}
+
+// A soup whose coordinates are subnormal (a file in a unit near 1e-320): brought into range by
+// 2^1023, the largest power of two a double holds, it is repaired as at scale 1. Before, the
+// exponent was 1074, whose power of two is infinite, and the soup was refused.
+TEST(Pipeline, SoupOfSubnormalCoordinatesIsRepairedAsAtScaleOne)
+{
+  // Two unit squares side by side, the right one 1/16 away along x, one of its seam corners 1/32
+  // higher: every coordinate a multiple of 1/32 up to 2, so a multiple of 2^-1074 (the smallest
+  // subnormal) once scaled by 2^-1069, exactly.
+  const std::vector<Point> points = {Point(0, 0, 0),      Point(1, 0, 0), Point(1, 1, 0), Point(0, 1, 0),
+                                     Point(1.0625, 0, 0), Point(2, 0, 0), Point(2, 1, 0), Point(1.0625, 1.03125, 0)};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const double tolerance = 0.125;
+  auto p1 = points;
+  auto t1 = triangles;
+  const Reconstruction_report r1 = ST::reconstruct_topology(p1, t1, CGAL::parameters::snapping_tolerance(tolerance));
+  ASSERT_EQ(r1.snapped_vertices, 2u);
+  ASSERT_EQ(r1.border_edges_after, 6u);
+  for(int k : {-1069, -1060, -1030}) {
+    SCOPED_TRACE("2^" + std::to_string(k));
+    std::vector<Point> p2;
+    for(const Point& p : points) p2.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+    ASSERT_LT(std::ldexp(2.0, k), std::numeric_limits<double>::min()); // (subnormal)
+    auto t2 = triangles;
+    const Reconstruction_report r2 =
+      ST::reconstruct_topology(p2, t2, CGAL::parameters::snapping_tolerance(std::ldexp(tolerance, k)));
+    EXPECT_EQ(t2, t1);
+    ASSERT_EQ(p2.size(), p1.size());
+    for(std::size_t i = 0; i < p1.size(); ++i)
+      EXPECT_EQ(p2[i], Point(std::ldexp(p1[i].x(), k), std::ldexp(p1[i].y(), k), std::ldexp(p1[i].z(), k))) << i;
+    EXPECT_EQ(r2.snapped_vertices, r1.snapped_vertices);
+    EXPECT_EQ(r2.border_edges_after, r1.border_edges_after);
+    EXPECT_EQ(r2.tolerance, std::ldexp(r1.tolerance, k));
+    EXPECT_EQ(r2.max_displacement, std::ldexp(r1.max_displacement, k));
+  }
 }
 
 // The steps on their own, at the same scales: `snap_vertices()` and `split_t_junctions()` decide

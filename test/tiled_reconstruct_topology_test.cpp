@@ -794,6 +794,62 @@ TEST(TiledReconstruction, CanonicalOrder)
   EXPECT_FALSE(same(c, d));
 }
 
+// Coordinates beyond 2^128 or below 2^-128 (a file in another unit): the tiles' plan, halos and
+// taint work at the input's scale (near 1e-270 the squared lengths rounded to 0 and nothing was
+// welded; such a soup was then refused). It is repaired as one tile, scaled by a power of two as
+// in memory: the in-memory result, which is the soup at a moderate scale repaired and scaled, on
+// one process and in a team of three.
+TEST(TiledReconstruction, SoupAtAnExtremeScaleIsRepairedWholeAsInMemory)
+{
+  const Soup seams = jittered_seams("clean/elephant.off", 6, 1e-6, 5);
+  const double t = 1e-5 * diagonal(seams.points);
+  const Canonical moderate = in_memory(seams, CGAL::parameters::snapping_tolerance(t));
+  ASSERT_LT(moderate.points.size(), seams.points.size()); // (the tolerance welds)
+  for(int k : {-900, -140, 140, 1000}) {
+    SCOPED_TRACE("2^" + std::to_string(k));
+    Soup far;
+    for(const Point& p : seams.points)
+      far.points.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+    far.triangles = seams.triangles;
+    const auto np = CGAL::parameters::snapping_tolerance(std::ldexp(t, k));
+    const Canonical expected = in_memory(far, np);
+    Canonical scaled_moderate;
+    for(const Point& p : moderate.points)
+      scaled_moderate.points.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), std::ldexp(p.z(), k));
+    scaled_moderate.triangles = moderate.triangles;
+    EXPECT_TRUE(same(scaled_moderate, expected));
+    ST::Tiled_reconstruction_report report;
+    EXPECT_TRUE(same(expected, tiled(far, 8, np, &report)));
+    EXPECT_TRUE(report.whole_soup);
+    EXPECT_NE(report.whole_soup_reason.find("beyond 2^128 or below 2^-128"), std::string::npos) << report.whole_soup_reason;
+    EXPECT_EQ(report.tile_runs, 1u);
+
+    const ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(far.points, far.triangles);
+    const std::string folder = soup_test::temporary_folder("tiled_extreme_team");
+    constexpr std::size_t size = 3;
+    Thread_team_state state(size);
+    std::vector<Canonical> outputs(size);
+    std::vector<ST::Tiled_reconstruction_report> reports(size);
+    std::vector<std::thread> threads;
+    for(std::size_t rank = 0; rank < size; ++rank)
+      threads.emplace_back([&, rank] {
+        Thread_team team{&state, rank};
+        reports[rank] =
+          ST::tiled_reconstruct_topology(team, source, 8, folder, outputs[rank].points, outputs[rank].triangles, np);
+      });
+    for(std::thread& thread : threads) thread.join();
+    EXPECT_TRUE(same(expected, outputs[0]));
+    for(std::size_t rank = 0; rank < size; ++rank) {
+      EXPECT_EQ(reports[rank].whole_soup_reason, report.whole_soup_reason) << rank;
+      if(rank > 0) {
+        EXPECT_TRUE(outputs[rank].triangles.empty()) << rank;
+      }
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(folder)) << "files left in " << folder;
+    std::filesystem::remove_all(folder);
+  }
+}
+
 TEST(TiledReconstruction, BadArgumentsAreRefused)
 {
   Soup soup;
@@ -815,30 +871,17 @@ TEST(TiledReconstruction, BadArgumentsAreRefused)
   } catch(const ST::Invalid_input& e) {
     EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
   }
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "spilled before the refusal";
   EXPECT_NO_THROW(ST::tiled_reconstruct_topology(source, 2, folder, points, triangles,
                                                  CGAL::parameters::snapping_tolerance(1e-160)));
-  // Coordinates beyond 2^128 or below 2^-128: the tiles square lengths at the input's scale (near
-  // 1e-270 nothing was welded); refused whatever the tolerance, with the way out (the repair in
-  // memory scales them).
-  for(int k : {-900, -140, 140, 1000}) {
-    Soup far;
-    for(const Point& p : soup.points) far.points.emplace_back(std::ldexp(p.x(), k), std::ldexp(p.y(), k), 0);
-    far.triangles = soup.triangles;
-    ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> far_source(far.points, far.triangles);
-    try {
-      ST::tiled_reconstruct_topology(far_source, 2, folder, points, triangles,
-                                     CGAL::parameters::snapping_tolerance(0.0));
-      ADD_FAILURE() << "not refused: 2^" << k;
-    } catch(const ST::Invalid_input& e) {
-      EXPECT_NE(std::string(e.what()).find("repair without tiles"), std::string::npos) << e.what();
-    }
-  }
   Soup near;
   for(const Point& p : soup.points) near.points.emplace_back(std::ldexp(p.x(), 120), std::ldexp(p.y(), 120), 0);
   near.triangles = soup.triangles;
   ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> near_source(near.points, near.triangles);
-  EXPECT_NO_THROW(ST::tiled_reconstruct_topology(near_source, 2, folder, points, triangles,
-                                                 CGAL::parameters::snapping_tolerance(std::ldexp(1e-3, 120))));
+  ST::Tiled_reconstruction_report report;
+  EXPECT_NO_THROW(report = ST::tiled_reconstruct_topology(near_source, 2, folder, points, triangles,
+                                                          CGAL::parameters::snapping_tolerance(std::ldexp(1e-3, 120))));
+  EXPECT_FALSE(report.whole_soup) << report.whole_soup_reason;
   std::filesystem::remove_all(folder);
 }
 

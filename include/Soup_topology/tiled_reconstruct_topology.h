@@ -120,6 +120,12 @@ struct Tile_run
   bool crowded = false;                // the taint exceeded its budget (`Tile_taint::crowded()`): not tiled
 };
 
+/// removes the spill files of the tiles of `plan` from `folder` (those that are there).
+inline void remove_tile_files(const Tile_plan& plan, const std::string& folder)
+{
+  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(tile_file_name(folder, tile).c_str());
+}
+
 /// repairs the region of tile `tile` given by the corners of its triangles, with the halo `halo`,
 /// and keeps the owned triangles and the count of the tainted ones. Under `COLLAPSE`, a region
 /// with a degenerate triangle is not repaired unless it is the whole soup (`whole_soup`, or a
@@ -165,6 +171,8 @@ Tile_run repair_tile_region(const std::vector<Tile_corners>& region, const Tile_
   // repaired without the observer.
   std::optional<Tile_taint<Kernel>> taint;
   if(everything) {
+    // (`snap_vertices()` and `split_t_junctions()` scale a soup at an extreme scale by a power
+    // of two on their own, as in memory)
     steps.weld_and_split_in_rounds(tolerance, max_rounds, do_split, policy, visitor);
   } else {
     // The depth of a point: the region holds every point within it.
@@ -229,12 +237,8 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
   const double t = settings.tolerance;
   if(!(t >= 0) || !std::isfinite(t))
     throw Invalid_input("tiled_reconstruct_topology: the tolerance must be a finite number >= 0");
-  if(!std::isfinite(4 * t * t)) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%g", t);
-    throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance is too large (") + value +
-                        "): the square of twice its value overflows a double");
-  }
+  // (whether it is too large depends on the scale the soup is repaired at: checked once planned,
+  // `check_tolerance_square()`)
   settings.max_rounds = choose_parameter(get_parameter(np, internal_np::maximum_number_of_rounds), std::size_t(8));
   settings.do_split = choose_parameter(get_parameter(np, internal_np::do_split_t_junctions), true);
   settings.policy = small_features_policy(np);
@@ -245,23 +249,47 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
   return settings;
 }
 
-/// throws `Invalid_input` if the cube of `plan` reaches coordinates beyond 2^128 or below 2^-128
-/// (all of them, in absolute value). The plan, the halos, the depths and the taint of the tiles
-/// square lengths at the input's scale: unlike the pipeline in memory, which scales such a soup
-/// by a power of two first (internal/coordinate_scale.h), the tiled repair cannot decide it
-/// (near 1e-270 the squared tolerance and distances to the tiles rounded to 0 and nothing was
-/// welded). Every process of a team holds the plan and refuses alike.
-inline void check_moderate_scale(const Tile_plan& plan)
+/// throws `Invalid_input` if the square of twice `tolerance` overflows a double: the predicates
+/// compare squared distances with it. (A soup at an extreme scale is not checked here: it is
+/// repaired whole, by steps that check the tolerance at the scale they repair it at, as in memory.)
+inline void check_tolerance_square(double tolerance)
+{
+  if(std::isfinite(4 * tolerance * tolerance)) return;
+  char value[32];
+  std::snprintf(value, sizeof value, "%g", tolerance);
+  throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance is too large (") + value +
+                      "): the square of twice its value overflows a double");
+}
+
+/// the largest absolute coordinate of a corner of the cube of `plan`.
+inline double largest_coordinate_of_cube(const Tile_plan& plan)
 {
   double largest = 0;
   for(std::size_t i = 0; i < 3; ++i)
     largest = std::max({largest, std::abs(plan.origin()[i]), std::abs(plan.origin()[i] + plan.side())});
-  if(moderate_scale_exponent(largest) == 0) return;
+  return largest;
+}
+
+/// `true` if the cube of `plan` reaches coordinates beyond 2^128 or stays below 2^-128 (all of
+/// them, in absolute value). The plan, the halos, the depths and the taint of the tiles square
+/// lengths at the input's scale (near 1e-270 the squared tolerance and the distances to the tiles
+/// rounded to 0 and nothing was welded), where the pipeline in memory scales such a soup by a
+/// power of two first (internal/coordinate_scale.h): such a soup is repaired as one tile, whose
+/// weld and splits scale it as in memory. Every process of a team holds the plan and decides alike.
+inline bool reaches_extreme_scale(const Tile_plan& plan)
+{
+  return moderate_scale_exponent(largest_coordinate_of_cube(plan)) != 0;
+}
+
+/// the reason given in the report when `reaches_extreme_scale()`.
+inline std::string extreme_scale_reason(const Tile_plan& plan)
+{
+  const double largest = largest_coordinate_of_cube(plan);
   char value[32];
   std::snprintf(value, sizeof value, "%g", largest);
-  throw Invalid_input(std::string("tiled_reconstruct_topology: the coordinates reach ") + value +
-                      ", beyond 2^128 or below 2^-128, where squared lengths leave the range of doubles; "
-                      "repair without tiles, where such a soup is scaled by a power of two first");
+  return std::string("coordinates that reach ") + value +
+         ", beyond 2^128 or below 2^-128 (the tiles work at the input's scale; the whole soup is scaled by a power of "
+         "two, as in memory)";
 }
 
 /// the plan of the tiles, with the halo of the first runs: rank 0 plans and spills `source` into
@@ -281,10 +309,14 @@ Tile_plan plan_and_spill(TileTeam& team, const TriangleSource& source, std::size
   Tile_plan plan;
   if(team.rank() == 0) {
     plan = plan_tiles(source, number_of_tiles, 0);
-    const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
-    plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
-    const Tile_files files = write_tile_files(source, plan, folder);
-    for(std::size_t h : files.halo) report.halo_triangles += h;
+    // A soup at an extreme scale is repaired whole, and a tolerance too large for a soup at a
+    // moderate scale is refused, by every process once it holds the plan: nothing is spilled.
+    if(!reaches_extreme_scale(plan) && std::isfinite(4 * tolerance * tolerance)) {
+      const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
+      plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
+      const Tile_files files = write_tile_files(source, plan, folder);
+      for(std::size_t h : files.halo) report.halo_triangles += h;
+    }
   }
   if(team.size() > 1) {
     // The plan, once the spill files are written.
@@ -383,7 +415,7 @@ template <class ConcurrencyTag, class TriangleSource>
 Soup_part repair_whole_soup(const TriangleSource& source, const Tile_plan& plan, const std::string& folder,
                             const Tiled_repair_settings& settings, Tiled_reconstruction_report& report)
 {
-  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(tile_file_name(folder, tile).c_str());
+  remove_tile_files(plan, folder);
   const Tile_plan one = plan_tiles(source, 1, 0);
   std::vector<Tile_corners> region;
   source.for_each([&](const Tile_corners& c, std::uint64_t) { region.push_back(c); });
@@ -411,7 +443,9 @@ Soup_part repair_whole_soup(const TriangleSource& source, const Tile_plan& plan,
 /// corners is tainted. Otherwise the tile is repaired again with the halo doubled, until it is
 /// clean: the output never holds a decision the region could not certify. The tiles to repair
 /// again are spilled together, in one stream of the source per round of doubling.
-/// A region that grows past the bounding cube is the whole soup, which taints nothing.
+/// A region that grows past the bounding cube is the whole soup, which taints nothing. A soup
+/// whose coordinates reach beyond 2^128 or stay below 2^-128, which the tiles would decide at the
+/// input's scale, is repaired as one tile, scaled as in memory (the report says so).
 ///
 /// Memory: one tile's region and its repair, and the owned triangles of the tiles done on the
 /// points they use (12 bytes a triangle, 24 a point), merged at the end.
@@ -486,7 +520,10 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   Tiled_reconstruction_report report;
   report.tolerance = settings.tolerance;
   const Tile_plan plan = internal::plan_and_spill(team, source, number_of_tiles, folder, settings.tolerance, np, report);
-  internal::check_moderate_scale(plan);
+  // A soup at an extreme scale is repaired as one tile (`internal::reaches_extreme_scale()`).
+  bool whole = internal::reaches_extreme_scale(plan);
+  if(whole) report.whole_soup_reason = internal::extreme_scale_reason(plan);
+  else internal::check_tolerance_square(settings.tolerance); // (on every process; nothing was spilled then)
   const double halo = plan.halo();
   report.first_halo = report.largest_halo = halo;
   report.input_triangles = plan.number_of_triangles();
@@ -499,7 +536,6 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   for(std::size_t tile = 0; tile < to_do.size(); ++tile) to_do[tile] = tile;
   // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
   const double enough = 4 * (plan.side() + settings.tolerance) + halo;
-  bool whole = false;
   Tile_progress where;
   for(std::size_t k = team.rank(); k < to_do.size(); k += team.size()) where.triangles += plan.owned_triangles(to_do[k]);
   for(double h = halo; !to_do.empty() && !whole; h *= 2) {
