@@ -213,6 +213,35 @@ TEST(LoopSubdivision, DragonWithHoleMatchesCgal)
   expect_same_as_cgal("ChineseDragon-10kv.off.xz", 2);
 }
 
+// Subdivision and limit points are weighted sums of points: on a mesh scaled by a power of two,
+// in another unit (2^-900: near 1e-270; 2^1000: near 1e300), they are the points of the mesh at
+// its own scale, scaled, to the bit (a product by 2^k commutes with the rounding of + - * / as
+// long as no result leaves the normal doubles). The dragon has a border, so the crease rules are
+// in it too.
+TEST(LoopSubdivision, ResultDoesNotDependOnTheScale)
+{
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  read_data("ChineseDragon-10kv.off.xz", points, triangles);
+  const auto scaled = [](std::vector<Point> p, int k) {
+    for(Point& q : p) q = Point(std::ldexp(q.x(), k), std::ldexp(q.y(), k), std::ldexp(q.z(), k));
+    return p;
+  };
+  std::vector<Point> subdivided = points;
+  std::vector<Triangle> subdivided_triangles = triangles;
+  ST::loop_subdivision(subdivided, subdivided_triangles, CGAL::parameters::number_of_iterations(2));
+  const std::vector<Point> limits = ST::loop_limit_points(points, triangles);
+  for(int k : {-900, -140, 140, 1000}) {
+    SCOPED_TRACE("2^" + std::to_string(k));
+    std::vector<Point> p = scaled(points, k);
+    std::vector<Triangle> t = triangles;
+    EXPECT_EQ(ST::loop_limit_points(p, t), scaled(limits, k));
+    ST::loop_subdivision(p, t, CGAL::parameters::number_of_iterations(2));
+    EXPECT_EQ(t, subdivided_triangles);
+    EXPECT_EQ(p, scaled(subdivided, k));
+  }
+}
+
 // The lecture's boundary rules, checked directly on every border edge and vertex of the dragon.
 TEST(LoopSubdivision, BoundaryRulesOfTheLecture)
 {
