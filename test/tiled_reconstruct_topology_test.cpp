@@ -692,6 +692,53 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   std::filesystem::remove_all(folder);
 }
 
+// Under `--max-memory`, a soup the tiles cannot decide (here one at 2^-900, in another unit) is
+// repaired as one tile: the tool writes the result of the repair in memory and says on standard
+// error that the limit was not allowed for.
+TEST(TiledReconstruction, ToolWarnsWhenTheSoupIsRepairedWholeUnderAMemoryLimit)
+{
+  // (large enough for the limit to choose tiles: the soup of ToolChoosesTheTilesForAMemoryLimit)
+  Soup mesh;
+  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  const auto seams = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * diagonal(mesh.points), 3);
+  Soup far;
+  for(const Point& p : seams.points)
+    far.points.emplace_back(std::ldexp(p.x(), -900), std::ldexp(p.y(), -900), std::ldexp(p.z(), -900));
+  far.triangles = seams.triangles;
+  const std::string folder = soup_test::temporary_folder("tiled_whole_limit");
+  const std::string in = folder + "/far.off";
+  ST::IO::write_triangle_soup(in, far.points, far.triangles);
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", std::ldexp(1e-5 * diagonal(seams.points), -900));
+  const auto repair = [&](const std::string& options, const std::string& out) {
+    return soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + in + "' -o '" + out +
+                                  "' --json --tolerance " + tolerance + " " + options + " 2>&1");
+  };
+  const auto in_memory_run = repair("", folder + "/memory.off");
+  ASSERT_EQ(in_memory_run.second, 0) << in_memory_run.first;
+  const auto limited = repair("--max-memory 60M", folder + "/limited.off");
+  ASSERT_EQ(limited.second, 0) << limited.first;
+  EXPECT_GT(soup_test::json_integer(limited.first, "tiles"), 1) << limited.first;
+  EXPECT_NE(limited.first.find("\"whole_soup\": true"), std::string::npos) << limited.first;
+  EXPECT_NE(limited.first.find("warning: the soup was repaired as one tile (coordinates that reach"), std::string::npos)
+    << limited.first;
+  Soup a, b;
+  ST::IO::read_triangle_soup(folder + "/memory.off", a.points, a.triangles);
+  ST::IO::read_triangle_soup(folder + "/limited.off", b.points, b.triangles);
+  Canonical ca, cb;
+  ST::canonical_triangle_soup(a.points, a.triangles, ca.points, ca.triangles);
+  ST::canonical_triangle_soup(b.points, b.triangles, cb.points, cb.triangles);
+  EXPECT_LT(ca.points.size(), far.points.size()); // (welded)
+  EXPECT_TRUE(same(ca, cb));
+  // With --tiles N and no limit, nothing to warn about.
+  const auto forced = repair("--tiles 4", folder + "/forced.off");
+  ASSERT_EQ(forced.second, 0) << forced.first;
+  EXPECT_EQ(forced.first.find("warning:"), std::string::npos) << forced.first;
+  std::filesystem::remove_all(folder);
+}
+
 // The files of an assembly given together (`repair A.stl B.stl -o OUT --tiles N`) are streamed
 // as one soup: the pig cut into two binary STL files gives the file of the whole pig, byte for
 // byte. Without tiles, or with a file that is not a binary STL, the tool refuses.

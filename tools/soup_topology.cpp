@@ -892,6 +892,11 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
       std::cerr << "repair: warning: the repaired soup has " << points.size() << " points for " << triangles.size()
                 << " triangles (the model of --max-memory takes one for two); its merge and orientation need about "
                 << mebibytes(need) << ", above --max-memory " << mebibytes(*o.max_memory) << "\n";
+    // (a soup the tiles cannot decide is repaired whole: its memory is that of the repair in memory)
+    if(t.whole_soup)
+      std::cerr << "repair: warning: the soup was repaired as one tile (" << t.whole_soup_reason
+                << "): its memory is that of the repair in memory, which --max-memory " << mebibytes(*o.max_memory)
+                << " did not allow for\n";
   }
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
