@@ -532,6 +532,26 @@ struct Thread_team
   std::vector<std::uint64_t> all_gather(const std::vector<std::uint64_t>& v) { return state->all_gather(my_rank, v); }
 };
 
+// `tiled_reconstruct_topology()` by a team of `size` threads, one a process: the outputs and the
+// reports, by rank.
+template <class Source, class NamedParameters>
+void run_in_team(std::size_t size, const Source& source, std::size_t tiles, const std::string& folder,
+                 const NamedParameters& np, std::vector<Canonical>& outputs,
+                 std::vector<ST::Tiled_reconstruction_report>& reports)
+{
+  Thread_team_state state(size);
+  outputs.assign(size, Canonical());
+  reports.assign(size, ST::Tiled_reconstruction_report());
+  std::vector<std::thread> threads;
+  for(std::size_t rank = 0; rank < size; ++rank)
+    threads.emplace_back([&, rank] {
+      Thread_team team{&state, rank};
+      reports[rank] =
+        ST::tiled_reconstruct_topology(team, source, tiles, folder, outputs[rank].points, outputs[rank].triangles, np);
+    });
+  for(std::thread& thread : threads) thread.join();
+}
+
 // The tiled repair by teams of 2, 3 and 5 threads gives the single process's output and report:
 // the tiles repaired again (a first halo of twice the tolerance), a soup repaired whole (a crowd),
 // and more processes than tiles.
@@ -566,17 +586,9 @@ TEST(TiledReconstruction, TeamsGiveTheSingleProcessResult)
     const ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(c.soup->points, c.soup->triangles);
     for(std::size_t size : {2, 3, 5}) {
       const std::string folder = soup_test::temporary_folder("tiled_team");
-      Thread_team_state state(size);
-      std::vector<Canonical> outputs(size);
-      std::vector<ST::Tiled_reconstruction_report> reports(size);
-      std::vector<std::thread> threads;
-      for(std::size_t rank = 0; rank < size; ++rank)
-        threads.emplace_back([&, rank] {
-          Thread_team team{&state, rank};
-          reports[rank] = ST::tiled_reconstruct_topology(team, source, c.tiles, folder, outputs[rank].points,
-                                                         outputs[rank].triangles, np);
-        });
-      for(std::thread& thread : threads) thread.join();
+      std::vector<Canonical> outputs;
+      std::vector<ST::Tiled_reconstruction_report> reports;
+      run_in_team(size, source, c.tiles, folder, np, outputs, reports);
       EXPECT_TRUE(same(expected, outputs[0])) << size << " processes, " << c.tiles << " tiles";
       const ST::Tiled_reconstruction_report& r = reports[0];
       EXPECT_EQ(r.tile_runs, expected_report.tile_runs) << size;
@@ -868,23 +880,16 @@ TEST(TiledReconstruction, SoupAtAnExtremeScaleIsRepairedWholeAsInMemory)
     ST::Tiled_reconstruction_report report;
     EXPECT_TRUE(same(expected, tiled(far, 8, np, &report)));
     EXPECT_TRUE(report.whole_soup);
-    EXPECT_NE(report.whole_soup_reason.find("beyond 2^128 or below 2^-128"), std::string::npos) << report.whole_soup_reason;
+    EXPECT_NE(report.whole_soup_reason.find("beyond 2^128 or below 2^-128"), std::string::npos)
+      << report.whole_soup_reason;
     EXPECT_EQ(report.tile_runs, 1u);
 
     const ST::Soup_triangle_source<std::vector<Point>, std::vector<Triangle>> source(far.points, far.triangles);
     const std::string folder = soup_test::temporary_folder("tiled_extreme_team");
     constexpr std::size_t size = 3;
-    Thread_team_state state(size);
-    std::vector<Canonical> outputs(size);
-    std::vector<ST::Tiled_reconstruction_report> reports(size);
-    std::vector<std::thread> threads;
-    for(std::size_t rank = 0; rank < size; ++rank)
-      threads.emplace_back([&, rank] {
-        Thread_team team{&state, rank};
-        reports[rank] =
-          ST::tiled_reconstruct_topology(team, source, 8, folder, outputs[rank].points, outputs[rank].triangles, np);
-      });
-    for(std::thread& thread : threads) thread.join();
+    std::vector<Canonical> outputs;
+    std::vector<ST::Tiled_reconstruction_report> reports;
+    run_in_team(size, source, 8, folder, np, outputs, reports);
     EXPECT_TRUE(same(expected, outputs[0]));
     for(std::size_t rank = 0; rank < size; ++rank) {
       EXPECT_EQ(reports[rank].whole_soup_reason, report.whole_soup_reason) << rank;
