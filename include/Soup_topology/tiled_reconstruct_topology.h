@@ -120,12 +120,6 @@ struct Tile_run
   bool crowded = false;                // the taint exceeded its budget (`Tile_taint::crowded()`): not tiled
 };
 
-/// removes the spill files of the tiles of `plan` from `folder` (those that are there).
-inline void remove_tile_files(const Tile_plan& plan, const std::string& folder)
-{
-  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(tile_file_name(folder, tile).c_str());
-}
-
 /// repairs the region of tile `tile` given by the corners of its triangles, with the halo `halo`,
 /// and keeps the owned triangles and the count of the tainted ones. Under `COLLAPSE`, a region
 /// with a degenerate triangle is not repaired unless it is the whole soup (`whole_soup`, or a
@@ -249,12 +243,15 @@ Tiled_repair_settings tiled_repair_settings(const NamedParameters& np)
   return settings;
 }
 
-/// throws `Invalid_input` if the square of twice `tolerance` overflows a double: the predicates
-/// compare squared distances with it. (A soup at an extreme scale is not checked here: it is
-/// repaired whole, by steps that check the tolerance at the scale they repair it at, as in memory.)
+/// `true` if the square of twice `tolerance` is a finite double: the predicates compare squared
+/// distances with it. (A soup at an extreme scale is not asked: it is repaired whole, by steps
+/// that check the tolerance at the scale they repair it at, as in memory.)
+inline bool tolerance_square_is_finite(double tolerance) { return std::isfinite(4 * tolerance * tolerance); }
+
+/// throws `Invalid_input` unless `tolerance_square_is_finite(tolerance)`.
 inline void check_tolerance_square(double tolerance)
 {
-  if(std::isfinite(4 * tolerance * tolerance)) return;
+  if(tolerance_square_is_finite(tolerance)) return;
   char value[32];
   std::snprintf(value, sizeof value, "%g", tolerance);
   throw Invalid_input(std::string("tiled_reconstruct_topology: the tolerance is too large (") + value +
@@ -311,7 +308,7 @@ Tile_plan plan_and_spill(TileTeam& team, const TriangleSource& source, std::size
     plan = plan_tiles(source, number_of_tiles, 0);
     // A soup at an extreme scale is repaired whole, and a tolerance too large for a soup at a
     // moderate scale is refused, by every process once it holds the plan: nothing is spilled.
-    if(!reaches_extreme_scale(plan) && std::isfinite(4 * tolerance * tolerance)) {
+    if(!reaches_extreme_scale(plan) && tolerance_square_is_finite(tolerance)) {
       const double fallback = 4 * tolerance + 4 * plan.mean_edge_length();
       plan = plan.with_halo(choose_parameter(get_parameter(np, internal_np::tile_halo), fallback > 0 ? fallback : 1.0));
       const Tile_files files = write_tile_files(source, plan, folder);
@@ -407,6 +404,12 @@ inline std::vector<std::size_t> walk_round_outcomes(const std::vector<std::uint6
     }
   }
   return tainted;
+}
+
+/// removes the spill files of the tiles of `plan` from `folder` (those that are there).
+inline void remove_tile_files(const Tile_plan& plan, const std::string& folder)
+{
+  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) std::remove(tile_file_name(folder, tile).c_str());
 }
 
 /// the soup repaired as one tile holding everything, deep enough that nothing is tainted (the
