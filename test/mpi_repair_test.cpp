@@ -192,8 +192,9 @@ TEST_F(MpiRepair, CrowdedSoupIsRepairedWholeByRankZero)
   EXPECT_TRUE(soup_test::json_bool(got.first, "whole_soup")) << got.first;
 }
 
-// Errors: a missing input stops every rank with exit code 2 (a usage error, seen by every rank
-// before any exchange); a missing tolerance too; a spill folder that does not exist ends the job.
+// Errors: a missing input ends the job with exit code 2 (rank 0 cannot read it); a missing
+// tolerance stops every rank with exit code 2 (a usage error, seen by every rank before any
+// exchange), and says so once; a spill folder that does not exist ends the job.
 TEST_F(MpiRepair, ErrorsEndTheJob)
 {
   const auto missing = mpi(2, folder_ + "/missing.stl", folder_ + "/out.stl", "--tolerance 1e-3");
@@ -202,6 +203,13 @@ TEST_F(MpiRepair, ErrorsEndTheJob)
   const auto no_tolerance = mpi(2, in, folder_ + "/out.stl", "--tiles 4");
   EXPECT_EQ(no_tolerance.second, 2) << no_tolerance.first;
   EXPECT_NE(no_tolerance.first.find("--tolerance"), std::string::npos) << no_tolerance.first;
+  const auto no_option = mpi(2, in, folder_ + "/out.stl", "");
+  EXPECT_EQ(no_option.second, 2) << no_option.first;
+  EXPECT_NE(no_option.first.find("soup_topology_mpi: give an absolute --tolerance T\n"), std::string::npos)
+    << no_option.first;
+  for(const auto& run : {no_tolerance, no_option})
+    EXPECT_EQ(run.first.find("soup_topology_mpi:"), run.first.rfind("soup_topology_mpi:"))
+      << "one message, from rank 0: " << run.first;
   const auto no_folder = mpi(2, in, folder_ + "/out.stl", "--tolerance 1e-6 --spill-folder '" + folder_ + "/nowhere'");
   EXPECT_NE(no_folder.second, 0) << no_folder.first;
   EXPECT_NE(no_folder.first.find("no such folder"), std::string::npos) << no_folder.first;

@@ -1,25 +1,26 @@
 // Copyright (c) 2026 The Soup_topology authors.
 // SPDX-License-Identifier: LGPL-3.0-or-later
 //
-// soup_topology: the command-line face of the library.
+// The commands of soup_topology, the command-line face of the library, and of soup_topology_mpi
+// (tools/tool_commands.h):
 //   soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]
 //   soup_topology gaps FILE [--json] [--threads N]
 //   soup_topology repair IN -o OUT [--tolerance T|auto|per-part | --relative-tolerance R] [--report FILE.json]
 //                        [--json] [--check] [--no-t-junctions] [--self-intersections]
 //                        [--orientation P] [--small-features collapse|refuse] [--html REPORT.html]
 //                        [--threads N]
-// (the usage text below describes every option)
+//   mpirun -np K soup_topology_mpi IN -o OUT --tolerance T [--tiles N | --max-memory SIZE] ...
+// (the usage texts below describe every option)
 // Exit codes: 0 success, 1 `--check` found the written result not closed, not manifold or (with
 //             --self-intersections) self-intersecting, 2 bad input, arguments or a file that
 //             cannot be written (message on stderr).
+
+#include "tool_commands.h"
 
 #include <Soup_topology/Adjacency_tables.h>
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/tiled_reconstruct_topology.h>
-#ifdef SOUP_TOPOLOGY_MPI
-#include <Soup_topology/Mpi_tile_team.h>
-#endif
 #include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/orient_triangle_soup.h>
 #include <Soup_topology/soup_statistics.h>
@@ -83,8 +84,7 @@ struct Usage_error : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-// (soup_topology_mpi calls none of the commands but its own: [[maybe_unused]].)
-[[maybe_unused]] const char* usage_text =
+const char* usage_text =
   "usage:\n"
   "  soup_topology stats FILE [--json] [--html REPORT.html] [--threads N]\n"
   "      reads FILE (.stl ASCII or binary, .off, .obj, .ply, .wrl), welds exactly equal points,\n"
@@ -274,7 +274,7 @@ std::size_t parse_threads(const std::string& command, const std::string& text)
   return n;
 }
 
-[[maybe_unused]] int run_stats(const std::vector<std::string>& args)
+int run_stats(const std::vector<std::string>& args)
 {
   std::string file;
   bool json = false;
@@ -807,8 +807,7 @@ struct Read_soup
 // `repair --tiles N` (or `--max-memory SIZE`): tiled_reconstruct_topology() by `team` (one
 // process, or the ranks of soup_topology_mpi), then rank 0 orients and writes as `repair` does.
 // `given`: the soup, if it is read already.
-template <class Team>
-int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nullptr)
+int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* given = nullptr)
 {
   const bool root = team.rank() == 0;
   // On a terminal, rank 0's progress: tiles done, triangles a second, time left.
@@ -936,7 +935,7 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
   return written.exit_code(o);
 }
 
-[[maybe_unused]] int run_repair(const std::vector<std::string>& args)
+int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
   // Under --max-memory the memory model's limit comes first: freed memory goes back to the system.
@@ -947,7 +946,8 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
   if(!o.html_file.empty()) tool::check_html_path(o.html_file, {o.in, o.out, o.report_file});
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
-  ST::Single_process_team alone;
+  ST::Single_process_team process;
+  tool::Tile_team_of<ST::Single_process_team> alone(process);
   if(o.tiles > 0 || !o.more_inputs.empty()) return run_tiled_repair(o, alone);
   // --max-memory: in tiles when the repair in memory would not fit (a binary STL is not read
   // for that: its header gives the number of triangles).
@@ -999,7 +999,7 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
 }
 
 // `gaps`: the options of the analysis are read by tool::run_gaps(), `--threads N` here.
-[[maybe_unused]] int run_gaps(std::vector<std::string> args)
+int run_gaps(std::vector<std::string> args)
 {
   std::size_t threads = 0;
   for(std::size_t i = 0; i < args.size(); ++i)
@@ -1013,7 +1013,6 @@ int run_tiled_repair(const Repair_options& o, Team& team, Read_soup* given = nul
   return tool::run_gaps<Concurrency>(args);
 }
 
-#ifdef SOUP_TOPOLOGY_MPI
 const char* mpi_usage_text =
   "usage:\n"
   "  mpirun -np K soup_topology_mpi IN -o OUT --tolerance T [--tiles N | --max-memory SIZE]\n"
@@ -1028,22 +1027,19 @@ const char* mpi_usage_text =
   "exit codes: as soup_topology repair\n";
 
 // soup_topology_mpi: the options of `repair --tiles N`, checked by every rank alike.
-Repair_options mpi_repair_options(const std::vector<std::string>& args, const ST::Mpi_tile_team& team)
+Repair_options mpi_repair_options(const std::vector<std::string>& args, const tool::Tile_team& team)
 {
   Repair_options o = parse_repair_arguments(args);
-  if(!o.tolerance) throw Usage_error("soup_topology_mpi: give an absolute --tolerance T");
+  if(!o.tolerance) throw Usage_error("give an absolute --tolerance T");
   if(o.tiles == 0 && !o.max_memory) o.tiles = std::min<std::size_t>(4096, 4 * team.size());
   for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
   return o;
 }
-#endif
 
 } // namespace
 
-#ifndef SOUP_TOPOLOGY_MPI
-int main(int argc, char** argv)
+int soup_topology_tool::run_tool(std::vector<std::string> args)
 {
-  std::vector<std::string> args(argv + 1, argv + argc);
   if(args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     (args.empty() ? std::cerr : std::cout) << usage_text;
     return args.empty() ? 2 : 0;
@@ -1052,9 +1048,10 @@ int main(int argc, char** argv)
   args.erase(args.begin());
   try {
     if(command == "stats" || command == "gaps") tool::keep_freed_memory_for_reuse();
-    if(command == "stats") return run_stats(args);
-    if(command == "repair") return run_repair(args);
-    if(command == "gaps") return run_gaps(args);
+    // (the commands of this file, not soup_topology_tool::run_gaps(), which `gaps` calls)
+    if(command == "stats") return ::run_stats(args);
+    if(command == "repair") return ::run_repair(args);
+    if(command == "gaps") return ::run_gaps(args);
     throw Usage_error("unknown command '" + command + "'");
   } catch(const Usage_error& e) {
     std::cerr << "soup_topology: " << e.what() << "\n" << usage_text;
@@ -1073,16 +1070,12 @@ int main(int argc, char** argv)
     return 2;
   }
 }
-#else
-int main(int argc, char** argv)
+
+int soup_topology_tool::run_mpi_tool(const std::vector<std::string>& args, Tile_team& team)
 {
-  MPI_Init(&argc, &argv);
-  ST::Mpi_tile_team team;
   const bool root = team.rank() == 0;
-  const std::vector<std::string> args(argv + 1, argv + argc);
   if(args.empty() || args[0] == "--help" || args[0] == "-h") {
     if(root) (args.empty() ? std::cerr : std::cout) << mpi_usage_text;
-    MPI_Finalize();
     return args.empty() ? 2 : 0;
   }
   Repair_options o;
@@ -1092,22 +1085,9 @@ int main(int argc, char** argv)
   } catch(const std::exception& e) {
     // Every rank checks the same arguments: every rank stops here.
     if(root) std::cerr << "soup_topology_mpi: " << e.what() << "\n" << mpi_usage_text;
-    MPI_Finalize();
     return 2;
   }
-  int code = 0;
-  try {
-    tool::install_signal_handlers();
-    const Thread_limit limit(o.threads);
-    code = run_tiled_repair(o, team);
-  } catch(const std::exception& e) {
-    // The other ranks may wait for this one: the whole job ends.
-    std::cerr << "soup_topology_mpi: rank " << team.rank() << ": "
-              << (dynamic_cast<const ST::Invalid_input*>(&e) != nullptr ? "invalid input: " : "") << e.what() << "\n";
-    MPI_Abort(MPI_COMM_WORLD, 2);
-    return 2;
-  }
-  MPI_Finalize();
-  return code;
+  tool::install_signal_handlers();
+  const Thread_limit limit(o.threads);
+  return run_tiled_repair(o, team);
 }
-#endif
