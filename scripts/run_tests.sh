@@ -7,7 +7,7 @@
 # (SOUP_TOPOLOGY_HARDENING=0 skips those three).
 #   BUILD_DIR     the Release build folder (default build)
 #   JOBS          parallel compilations and tests (default: nproc)
-#   FUZZ_SECONDS  seconds each fuzz target runs here (default 10: a check that every target still
+#   FUZZ_SECONDS  seconds each fuzz target runs here (default 5: a check that every target still
 #                 runs clean from its seeds; README.md "Hardening" has the long runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,6 +73,6 @@ if [ "$hardening" != 0 ]; then
   step_done "sanitizer build and tests"
   bash scripts/run_thread_sanitizer.sh
   step_done "determinism tests under ThreadSanitizer"
-  FUZZ_SECONDS=${FUZZ_SECONDS:-10} bash scripts/run_fuzz.sh
+  FUZZ_SECONDS=${FUZZ_SECONDS:-5} bash scripts/run_fuzz.sh
   step_done "fuzz build and runs"
 fi
