@@ -62,6 +62,16 @@ double diagonal(const std::vector<Point>& points)
                    CGAL::square(box.zmax() - box.zmin()));
 }
 
+// The soup of a file, in the canonical order.
+Canonical canonical_of_file(const std::string& file)
+{
+  Soup s;
+  ST::IO::read_triangle_soup(file, s.points, s.triangles);
+  Canonical c;
+  ST::canonical_triangle_soup(s.points, s.triangles, c.points, c.triangles);
+  return c;
+}
+
 // The in-memory repair, in the canonical order.
 template <class NamedParameters>
 Canonical in_memory(Soup soup, const NamedParameters& np)
@@ -666,18 +676,11 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
     return soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + in + "' -o '" + out +
                                   "' --json --tolerance " + tolerance + " --max-memory " + limit + " 2>&1");
   };
-  const auto canonical_of = [](const std::string& file) {
-    Soup s;
-    ST::IO::read_triangle_soup(file, s.points, s.triangles);
-    Canonical c;
-    ST::canonical_triangle_soup(s.points, s.triangles, c.points, c.triangles);
-    return c;
-  };
   const auto whole = repair("2G", folder + "/whole.off");
   ASSERT_EQ(whole.second, 0) << whole.first;
   EXPECT_EQ(soup_test::json_integer(whole.first, "tiles"), -1) << "in memory: " << whole.first;
   EXPECT_GT(soup_test::json_integer(whole.first, "modelled_peak"), 0) << whole.first;
-  const Canonical expected = canonical_of(folder + "/whole.off");
+  const Canonical expected = canonical_of_file(folder + "/whole.off");
   ASSERT_GT(expected.triangles.size(), 80000u);
   // Between the output's need and the whole soup's: tiles, the fewer the larger the limit.
   long long previous_tiles = 0;
@@ -692,7 +695,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
     EXPECT_LE(soup_test::json_integer(tiled_run.first, "modelled_peak"),
               soup_test::json_integer(tiled_run.first, "max_memory")) << tiled_run.first;
     EXPECT_EQ(tiled_run.first.find("warning"), std::string::npos) << "a closed mesh is within the model: " << tiled_run.first;
-    EXPECT_TRUE(same(expected, canonical_of(folder + "/tiled.off"))) << limit;
+    EXPECT_TRUE(same(expected, canonical_of_file(folder + "/tiled.off"))) << limit;
   }
   EXPECT_TRUE(std::filesystem::is_empty(folder + "/spill"));
   const auto too_small = repair("20M", folder + "/small.off");
@@ -736,14 +739,9 @@ TEST(TiledReconstruction, ToolWarnsWhenTheSoupIsRepairedWholeUnderAMemoryLimit)
   EXPECT_NE(limited.first.find("\"whole_soup\": true"), std::string::npos) << limited.first;
   EXPECT_NE(limited.first.find("warning: the soup was repaired as one tile (coordinates that reach"), std::string::npos)
     << limited.first;
-  Soup a, b;
-  ST::IO::read_triangle_soup(folder + "/memory.off", a.points, a.triangles);
-  ST::IO::read_triangle_soup(folder + "/limited.off", b.points, b.triangles);
-  Canonical ca, cb;
-  ST::canonical_triangle_soup(a.points, a.triangles, ca.points, ca.triangles);
-  ST::canonical_triangle_soup(b.points, b.triangles, cb.points, cb.triangles);
+  const Canonical ca = canonical_of_file(folder + "/memory.off");
   EXPECT_LT(ca.points.size(), far.points.size()); // (welded)
-  EXPECT_TRUE(same(ca, cb));
+  EXPECT_TRUE(same(ca, canonical_of_file(folder + "/limited.off")));
   // With --tiles N and no limit, nothing to warn about.
   const auto forced = repair("--tiles 4", folder + "/forced.off");
   ASSERT_EQ(forced.second, 0) << forced.first;
@@ -810,13 +808,7 @@ TEST(TiledReconstruction, ToolRepairsTheFilesOfAnAssemblyTogether)
     } else {
       // In one tile: the same mesh, in the canonical order too.
       EXPECT_EQ(soup_test::json_integer(parts.first, "tiles"), 1) << parts.first;
-      Soup x, y;
-      ST::IO::read_triangle_soup(folder + "/whole.off", x.points, x.triangles);
-      ST::IO::read_triangle_soup(folder + "/parts.off", y.points, y.triangles);
-      Canonical cx, cy;
-      ST::canonical_triangle_soup(x.points, x.triangles, cx.points, cx.triangles);
-      ST::canonical_triangle_soup(y.points, y.triangles, cy.points, cy.triangles);
-      EXPECT_TRUE(same(cx, cy));
+      EXPECT_TRUE(same(canonical_of_file(folder + "/whole.off"), canonical_of_file(folder + "/parts.off")));
     }
   }
   const auto untiled = soup_test::run_command(tool + "'" + folder + "/front.stl' '" + folder + "/back.stl' -o '" + folder +
