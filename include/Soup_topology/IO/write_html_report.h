@@ -12,6 +12,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/analyze_gaps.h>
 #include <Soup_topology/reconstruct_topology.h>
+#include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/html_report_mesh.h>
 #include <Soup_topology/internal/html_report_page.h>
 #include <Soup_topology/internal/tolerance.h>
@@ -348,9 +349,7 @@ inline Html_point html_center(const std::vector<Html_point>& points, double& hal
 /// camera, which works in float on the GPU. A power of two changes no digit of a coordinate.
 inline int html_view_exponent(double half_extent)
 {
-  if(!(half_extent > 0) || !std::isfinite(half_extent)) return 0;
-  if(half_extent >= std::ldexp(1.0, -32) && half_extent < std::ldexp(1.0, 32)) return 0;
-  return -std::ilogb(half_extent);
+  return exponent_into_unit_range(half_extent, 32);
 }
 
 /// `values` as a JSON array of strings.

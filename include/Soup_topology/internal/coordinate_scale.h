@@ -33,6 +33,17 @@ double largest_coordinate(const Point& p)
                   std::max(std::abs(CGAL::to_double(p.y())), std::abs(CGAL::to_double(p.z()))));
 }
 
+/// the exponent e such that `value` times 2^e lies in [1, 2), when `value` lies outside
+/// [2^-bound, 2^bound); 0 when it lies inside, is 0 or is not finite. (Scaled by a power of two, a
+/// number keeps its digits.)
+inline int exponent_into_unit_range(double value, int bound)
+{
+  if(!(value > 0) || !std::isfinite(value)) return 0;
+  const int e = std::ilogb(value);
+  if(e >= -bound && e < bound) return 0;
+  return -e;
+}
+
 /// the power of two 2^e by which a soup whose largest coordinate (absolute value) is `largest`
 /// is scaled: e = 0 when that lies in [2^-128, 2^128) (or is 0, or not finite), else the e that
 /// brings it into [1, 2).
@@ -50,10 +61,8 @@ double largest_coordinate(const Point& p)
 /// of [1, 2), still within the moderate range.
 inline int moderate_scale_exponent(double largest)
 {
-  if(!(largest > 0) || !std::isfinite(largest)) return 0;
-  const int e = std::ilogb(largest);
-  if(e >= -moderate_exponent_bound && e < moderate_exponent_bound) return 0;
-  return std::min(-e, std::numeric_limits<double>::max_exponent - 1);
+  return std::min(exponent_into_unit_range(largest, moderate_exponent_bound),
+                  std::numeric_limits<double>::max_exponent - 1);
 }
 
 /// `true` if the coordinates of `p` times 2^e are exact: always with an exact number type; with
