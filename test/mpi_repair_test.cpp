@@ -192,13 +192,15 @@ TEST_F(MpiRepair, CrowdedSoupIsRepairedWholeByRankZero)
   EXPECT_TRUE(soup_test::json_bool(got.first, "whole_soup")) << got.first;
 }
 
-// Errors: a missing input ends the job with exit code 2 (rank 0 cannot read it); a missing
-// tolerance stops every rank with exit code 2 (a usage error, seen by every rank before any
-// exchange), and says so once; a spill folder that does not exist ends the job.
+// Errors: a missing input (rank 0, which reads the inputs, tells the others) and a missing
+// tolerance (a usage error, seen by every rank) stop every rank with exit code 2 and one message;
+// a spill folder that does not exist ends the job.
 TEST_F(MpiRepair, ErrorsEndTheJob)
 {
   const auto missing = mpi(2, folder_ + "/missing.stl", folder_ + "/out.stl", "--tolerance 1e-3");
   EXPECT_EQ(missing.second, 2) << missing.first;
+  EXPECT_NE(missing.first.find("soup_topology_mpi: " + folder_ + "/missing.stl: cannot open the file for reading ("),
+            std::string::npos) << missing.first;
   const std::string in = soup_test::data_file("cad/ALSTOM_TEST4.off");
   const auto no_tolerance = mpi(2, in, folder_ + "/out.stl", "--tiles 4");
   EXPECT_EQ(no_tolerance.second, 2) << no_tolerance.first;
@@ -207,7 +209,7 @@ TEST_F(MpiRepair, ErrorsEndTheJob)
   EXPECT_EQ(no_option.second, 2) << no_option.first;
   EXPECT_NE(no_option.first.find("soup_topology_mpi: give an absolute --tolerance T\n"), std::string::npos)
     << no_option.first;
-  for(const auto& run : {no_tolerance, no_option})
+  for(const auto& run : {missing, no_tolerance, no_option})
     EXPECT_EQ(run.first.find("soup_topology_mpi:"), run.first.rfind("soup_topology_mpi:"))
       << "one message, from rank 0: " << run.first;
   const auto no_folder = mpi(2, in, folder_ + "/out.stl", "--tolerance 1e-6 --spill-folder '" + folder_ + "/nowhere'");

@@ -1087,6 +1087,27 @@ int soup_topology_tool::run_mpi_tool(const std::vector<std::string>& args, Tile_
     if(root) std::cerr << "soup_topology_mpi: " << e.what() << "\n" << mpi_usage_text;
     return 2;
   }
+  // Only rank 0 reads the inputs (the others may run on machines that do not see them): it
+  // checks that it can open them, and tells the others, so that every rank stops alike, with one
+  // message, instead of rank 0 failing alone and ending the job.
+  std::vector<char> unreadable;
+  if(root) {
+    for(const std::string& in : all_inputs(o)) {
+      std::FILE* f = std::fopen(in.c_str(), "rb");
+      if(f != nullptr) {
+        std::fclose(f);
+        continue;
+      }
+      const std::string message = in + ": cannot open the file for reading (" + std::strerror(errno) + ")";
+      unreadable.assign(message.begin(), message.end());
+      break;
+    }
+  }
+  team.broadcast(unreadable);
+  if(!unreadable.empty()) {
+    if(root) std::cerr << "soup_topology_mpi: " << std::string(unreadable.begin(), unreadable.end()) << "\n";
+    return 2;
+  }
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
   return run_tiled_repair(o, team);
