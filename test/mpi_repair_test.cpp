@@ -209,7 +209,11 @@ TEST_F(MpiRepair, ErrorsEndTheJob)
   EXPECT_EQ(no_option.second, 2) << no_option.first;
   EXPECT_NE(no_option.first.find("soup_topology_mpi: give an absolute --tolerance T\n"), std::string::npos)
     << no_option.first;
-  for(const auto& run : {missing, no_tolerance, no_option})
+  const auto folder_input = mpi(2, folder_, folder_ + "/out.stl", "--tolerance 1e-3");
+  EXPECT_EQ(folder_input.second, 2) << folder_input.first;
+  EXPECT_NE(folder_input.first.find("soup_topology_mpi: " + folder_ + ": is a folder, not a file"), std::string::npos)
+    << folder_input.first;
+  for(const auto& run : {missing, folder_input, no_tolerance, no_option})
     EXPECT_EQ(run.first.find("soup_topology_mpi:"), run.first.rfind("soup_topology_mpi:"))
       << "one message, from rank 0: " << run.first;
   const auto no_folder = mpi(2, in, folder_ + "/out.stl", "--tolerance 1e-6 --spill-folder '" + folder_ + "/nowhere'");

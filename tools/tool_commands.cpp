@@ -1092,15 +1092,14 @@ int soup_topology_tool::run_mpi_tool(const std::vector<std::string>& args, Tile_
   // message, instead of rank 0 failing alone and ending the job.
   std::vector<char> unreadable;
   if(root) {
-    for(const std::string& in : all_inputs(o)) {
-      std::FILE* f = std::fopen(in.c_str(), "rb");
-      if(f != nullptr) {
-        std::fclose(f);
-        continue;
+    try {
+      for(const std::string& in : all_inputs(o)) {
+        std::ifstream stream;
+        ST::internal::open_input_file(in, stream); // the readers' own check: missing, a folder, unreadable
       }
-      const std::string message = in + ": cannot open the file for reading (" + std::strerror(errno) + ")";
+    } catch(const ST::IO::Read_error& e) {
+      const std::string message = e.what();
       unreadable.assign(message.begin(), message.end());
-      break;
     }
   }
   team.broadcast(unreadable);
