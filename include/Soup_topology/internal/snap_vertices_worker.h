@@ -379,6 +379,18 @@ private:
       for_each_block<CGAL::Sequential_tag>(n, default_block_size, f);
   }
 
+  // `v.assign(n, value)` written by blocks of the weld: in a parallel weld the threads share the
+  // writes, and the first touch of fresh pages, of these large arrays.
+  template <class Vector, class T>
+  void assign_by_blocks(Vector& v, std::size_t n, const T& value) const
+  {
+    v.clear();
+    v.resize(n); // (an `Uninitialized_vector`: not written here)
+    for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::fill(v.begin() + static_cast<std::ptrdiff_t>(begin), v.begin() + static_cast<std::ptrdiff_t>(end), value);
+    });
+  }
+
   // From the octree on, until the ambiguous sites are listed, candidate `c` is the `c`-th in the
   // octree's (Morton) order: the copies of a point, and the neighbours of a candidate in the
   // tolerance graph, are then close in every array of the graph and the clusters (the rows, the
@@ -624,11 +636,11 @@ private:
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
-    target_.assign(points_.size(), none);
-    if(dense_) mate_of_.assign(points_.size(), not_candidate);
-    assigned_.assign(n, 0);
-    component_size_.assign(n, 0);
-    largest_cluster_.assign(n, 0);
+    assign_by_blocks(target_, points_.size(), none);
+    if(dense_) assign_by_blocks(mate_of_, points_.size(), not_candidate);
+    assign_by_blocks(assigned_, n, char(0));
+    assign_by_blocks(component_size_, n, std::uint32_t(0));
+    assign_by_blocks(largest_cluster_, n, std::uint32_t(0));
     // The components are read as roots from here on: their storage becomes `root_`.
     root_ = components_.take_roots();
     for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c]];
@@ -807,9 +819,10 @@ private:
         sort_by_key<CGAL::Sequential_tag>(items, buffer);
       }
       Uninitialized_vector<Item>().swap(buffer);
-      for(std::size_t i = 0; i < n;) {
-        std::size_t j = i + 1;
-        while(j < n && items[j].key == items[i].key) ++j;
+      // The candidates of equal x, sorted by (y, z, candidate): a total order, so each run has one
+      // result, sorted on TBB's threads run by run in a parallel weld.
+      const auto same_x_as_previous = [&](std::size_t i) { return items[i].key == items[i - 1].key; };
+      const auto sort_run = [&](std::size_t i, std::size_t j) {
         if(j - i > 1)
           std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
                     [&](const Item& a, const Item& b) {
@@ -819,8 +832,11 @@ private:
                       if(p.z() != q.z()) return p.z() < q.z();
                       return a.id < b.id;
                     });
-        i = j;
-      }
+      };
+      if(parallel_)
+        for_each_run<CGAL::Parallel_if_available_tag>(n, same_x_as_previous, sort_run);
+      else
+        for_each_run<CGAL::Sequential_tag>(n, same_x_as_previous, sort_run);
       const auto take_id = [&](std::size_t i) { lex_order_[i] = items[i].id; };
       if(parallel_)
         for_each_index<CGAL::Parallel_if_available_tag>(n, take_id);
@@ -1194,14 +1210,23 @@ private:
     if(collapse_) count_collapses();
     const bool rebuild = number_of_merges > tables_.number_of_triangles() / 16 + 64 || !collapsed_.empty();
     if(rebuild) {
-      std::vector<Adjacency_tables::Triangle> rewritten;
-      rewritten.reserve(tables_.number_of_triangles() - collapsed_.size());
-      std::size_t next_collapsed = 0;
-      for(size_type t = 0; t < tables_.number_of_triangles(); ++t) {
-        if(next_collapsed < collapsed_.size() && collapsed_[next_collapsed] == t) { ++next_collapsed; continue; }
-        Adjacency_tables::Triangle tr = tables_.triangle(t);
-        for(size_type& v : tr) v = final_vertex(v);
-        rewritten.push_back(tr);
+      // every triangle on its final vertices (by blocks, on TBB's threads in a parallel weld: every
+      // entry written there), then the collapsed ones left out, the others keeping their order
+      Uninitialized_vector<Adjacency_tables::Triangle> rewritten(tables_.number_of_triangles());
+      for_each_block_of_the_weld(rewritten.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t t = begin; t != end; ++t) {
+          Adjacency_tables::Triangle tr = tables_.triangle(static_cast<size_type>(t));
+          for(size_type& v : tr) v = final_vertex(v);
+          rewritten[t] = tr;
+        }
+      });
+      if(!collapsed_.empty()) {
+        std::size_t kept = 0, next_collapsed = 0;
+        for(std::size_t t = 0; t < rewritten.size(); ++t) {
+          if(next_collapsed < collapsed_.size() && collapsed_[next_collapsed] == t) { ++next_collapsed; continue; }
+          rewritten[kept++] = rewritten[t];
+        }
+        rewritten.resize(kept);
       }
       if(parallel_)
         tables_ = Adjacency_tables(rewritten, points_.size(), CGAL::Parallel_if_available_tag());
