@@ -411,16 +411,26 @@ public:
 
   /// how far the points moved: every input point follows its exact-weld image (same
   /// coordinates) and then the chain of welds; only the points that were welded can move.
+  /// The largest distance is the same in any order: with the tag and double coordinates it is
+  /// taken by blocks on TBB's threads.
   void measure_displacement()
   {
+    using Tag = std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag,
+                                   CGAL::Sequential_tag>;
     const typename Geom_traits::Compute_squared_distance_3 squared_distance = gt_.compute_squared_distance_3_object();
-    for(std::size_t v = 0; v < merged_into_.size(); ++v) {
-      if(merged_into_[v] == v) continue;
-      std::size_t w = merged_into_[v];
-      while(merged_into_[w] != w) w = merged_into_[w];
-      report_.max_displacement =
-        std::max(report_.max_displacement, std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w]))));
-    }
+    const std::size_t n = merged_into_.size();
+    std::vector<double> largest_of_block(number_of_blocks(n), 0.);
+    for_each_block<Tag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      double largest = 0;
+      for(std::size_t v = begin; v != end; ++v) {
+        if(merged_into_[v] == v) continue;
+        std::size_t w = merged_into_[v];
+        while(merged_into_[w] != w) w = merged_into_[w];
+        largest = std::max(largest, std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w]))));
+      }
+      largest_of_block[b] = largest;
+    });
+    for(double d : largest_of_block) report_.max_displacement = std::max(report_.max_displacement, d);
     std::vector<std::uint32_t>().swap(merged_into_);
   }
 
@@ -552,7 +562,7 @@ Reconstruction_report reconstruct_soup(const PutPoints& put_points, TriangleRang
   // and gives the points and the report's lengths back at the input's scale. The decisions are
   // then those taken on the soup at a moderate scale: squared tolerances and distances neither
   // overflow nor underflow (internal/coordinate_scale.h).
-  const int exponent = moderate_scale_exponent_of(steps.points());
+  const int exponent = moderate_scale_exponent_of<ConcurrencyTag>(steps.points());
   FT eps = resolve_tolerance<FT>(steps.points(), CGAL::Identity_property_map<typename Geom_traits::Point_3>(), np,
                                  exponent);
   if constexpr(has_vertex_tolerance_map<NamedParameters>()) {

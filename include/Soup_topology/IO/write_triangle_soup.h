@@ -16,6 +16,8 @@
 #include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/internal/Point_hash_map.h>
+#include <Soup_topology/internal/first_equal_points_by_blocks.h>
+#include <Soup_topology/internal/parallel.h>
 #include <Soup_topology/internal/soup_checks.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -84,17 +86,18 @@ void for_each_triangle(const TriangleRange& triangles, const Function& f)
 
 // Whether two of the points `order` lists have different coordinates (as doubles) but equal
 // `rounded` points; `rounded[i]` is point i rounded to float. The points equal in float are found
-// by the hash of the exact weld (`first_equal_points()`), each compared with the first of its kind.
-template <class PointRange, class Float_point>
+// as the exact weld finds equal points (`first_equal_points_by_blocks()`, on TBB's threads with
+// the tag), each compared with the first of its kind.
+template <class ConcurrencyTag, class PointRange, class Float_point>
 bool has_distinct_points_equal_in_float(const PointRange& points, const std::vector<Float_point>& rounded,
                                         const std::vector<std::size_t>& order)
 {
-  const auto first_of = Soup_topology::internal::first_equal_points(
+  const auto first_of = Soup_topology::internal::first_equal_points_by_blocks<ConcurrencyTag>(
     order.size(), [&](std::size_t k) -> const Float_point& { return rounded[order[k]]; });
-  for(std::size_t k = 0; k < order.size(); ++k)
-    if(first_of[k] != k && write_coordinates(points[order[first_of[k]]]) != write_coordinates(points[order[k]]))
-      return true;
-  return false;
+  const auto moves = [&](std::size_t k) {
+    return first_of[k] != k && write_coordinates(points[order[first_of[k]]]) != write_coordinates(points[order[k]]);
+  };
+  return Soup_topology::internal::first_index_where<ConcurrencyTag>(order.size(), moves) != order.size();
 }
 
 template <class PointRange>
@@ -297,7 +300,7 @@ void check_STL_float_rounding(const PointRange& points, const TriangleRange& tri
   // Distinct points that become equal: a reader welds them, and the mesh read back changes.
   // Whether there is such a pair is found by hashing; only then are the points sorted, so that
   // the pair named is the first in lexicographic order whatever the hashing.
-  if(internal::has_distinct_points_equal_in_float(points, rounded, order))
+  if(internal::has_distinct_points_equal_in_float<Tag>(points, rounded, order))
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
       return rounded[a] < rounded[b] || (rounded[a] == rounded[b] && a < b);
     });

@@ -7,6 +7,8 @@
 #ifndef SOUP_TOPOLOGY_INTERNAL_COORDINATE_SCALE_H
 #define SOUP_TOPOLOGY_INTERNAL_COORDINATE_SCALE_H
 
+#include <Soup_topology/internal/parallel.h>
+
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/number_utils.h>
 
@@ -91,16 +93,26 @@ Point scaled_point(const Point& p, int e)
 /// the exponent e of `moderate_scale_exponent()` for the points `points` (all of them), or 0
 /// when some point would not scale exactly (coordinates that span more than the range of the
 /// exponents): such a soup is measured as it is.
-template <class Point>
+///
+/// With a parallel `ConcurrencyTag` and `double` coordinates, the largest coordinate (a maximum:
+/// the same in any order) and the check are computed by blocks on TBB's threads.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class Point>
 int moderate_scale_exponent_of(const std::vector<Point>& points)
 {
+  using Tag = std::conditional_t<std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value,
+                                 ConcurrencyTag, CGAL::Sequential_tag>;
+  const std::size_t n = points.size();
+  std::vector<double> largest_of_block(number_of_blocks(n), 0.);
+  for_each_block<Tag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    double largest = 0;
+    for(std::size_t i = begin; i != end; ++i) largest = std::max(largest, largest_coordinate(points[i]));
+    largest_of_block[b] = largest;
+  });
   double largest = 0;
-  for(const Point& p : points) largest = std::max(largest, largest_coordinate(p));
+  for(double x : largest_of_block) largest = std::max(largest, x);
   const int e = moderate_scale_exponent(largest);
   if(e == 0) return 0;
-  for(const Point& p : points)
-    if(!scales_exactly(p, e)) return 0;
-  return e;
+  return first_index_where<Tag>(n, [&](std::size_t i) { return !scales_exactly(points[i], e); }) == n ? e : 0;
 }
 
 /// `points` times 2^exponent in `storage` (in place when `points` is `storage`); returns `storage`.
