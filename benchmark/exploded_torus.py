@@ -12,7 +12,11 @@
 # [-J, J], J = jitter x the diagonal of the torus' bounding box. 2 U V triangles, 6 U V points.
 #
 # Usage: exploded_torus.py OUT.off|OUT.stl [--u 1000] [--v 500] [--jitter 1e-6] [--seed 17]
-# (the defaults give 1,000,000 triangles).
+#                          [--shuffle none|triangles|both]
+# (the defaults give 1,000,000 triangles). `--shuffle triangles` lists the triangles in a random
+# order (seeded) with the points of an OFF file still in grid order; `both` numbers the points of
+# an OFF file in the order of the shuffled triangles too (a binary STL has no numbering: both
+# shuffle its facets).
 
 import argparse
 import math
@@ -27,6 +31,8 @@ def main():
     parser.add_argument("--v", type=int, default=500, help="quads around the minor circle")
     parser.add_argument("--jitter", type=float, default=1e-6, help="fraction of the diagonal")
     parser.add_argument("--seed", type=int, default=17)
+    parser.add_argument("--shuffle", choices=("none", "triangles", "both"), default="none",
+                        help="the order of the triangles (and of the points of an OFF file)")
     args = parser.parse_args()
 
     major, minor = 1.0, 0.4
@@ -53,19 +59,26 @@ def main():
             j1 = (j + 1) % v_count
             for corners in ((grid[i][j], grid[i1][j], grid[i1][j1]), (grid[i][j], grid[i1][j1], grid[i][j1])):
                 corner_lists.append([tuple(c + rng.uniform(-amplitude, amplitude) for c in p) for p in corners])
+    # the triangle listed k-th is order[k]: its corners are points 3 order[k] ... of the grid order
+    order = list(range(len(corner_lists)))
+    if args.shuffle != "none":
+        random.Random(args.seed + 1).shuffle(order)
     if args.out.lower().endswith(".stl"):
-        write_binary_stl(args.out, corner_lists)
+        write_binary_stl(args.out, [corner_lists[t] for t in order])
+    elif args.shuffle == "both":
+        write_off(args.out, [corner_lists[t] for t in order], list(range(len(order))))
     else:
-        write_off(args.out, corner_lists)
+        write_off(args.out, corner_lists, order)
 
 
-def write_off(path, corner_lists):
+def write_off(path, corner_lists, order):
+    # the points of corner_lists in their order, then the triangles in `order`
     triangles = len(corner_lists)
     lines = ["OFF", "%d %d 0" % (3 * triangles, triangles)]
     for corners in corner_lists:
         for p in corners:
             lines.append("%.17g %.17g %.17g" % p)
-    for t in range(triangles):
+    for t in order:
         lines.append("3 %d %d %d" % (3 * t, 3 * t + 1, 3 * t + 2))
     with open(path, "w") as out:
         out.write("\n".join(lines))
