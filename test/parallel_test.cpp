@@ -416,9 +416,13 @@ TEST(ParallelRuns, EveryRunSortedOnceWhateverTheThreads)
   for(std::size_t r = 0; r < sequential_runs.size(); ++r) {
     const auto [i, j] = sequential_runs[r];
     EXPECT_LT(i, j);
-    if(r > 0) EXPECT_EQ(i, sequential_runs[r - 1].second);
+    if(r > 0) {
+      EXPECT_EQ(i, sequential_runs[r - 1].second);
+    }
     for(std::size_t k = i + 1; k < j; ++k) ASSERT_EQ(items[k].key, items[i].key);
-    if(j < items.size()) EXPECT_NE(items[j].key, items[j - 1].key);
+    if(j < items.size()) {
+      EXPECT_NE(items[j].key, items[j - 1].key);
+    }
   }
   for_each_thread_count([&](int threads) {
     std::vector<std::pair<std::size_t, std::size_t>> runs;
