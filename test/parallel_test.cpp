@@ -435,6 +435,39 @@ TEST(ParallelRuns, EveryRunSortedOnceWhateverTheThreads)
   });
 }
 
+TEST(ParallelLargest, TheLargestOfAllBlocksWhereverItIs)
+{
+  // The largest value placed in the first element, inside a block, at a block's end and at the
+  // last element of a range of many blocks; an empty range and a range of negative values give
+  // the floor (`smallest`).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  const std::size_t n = 37 * ST::internal::default_block_size + 11;
+  std::vector<double> values(n);
+  for(double& x : values) x = value(rng);
+  const std::size_t places[] = {0, 5 * ST::internal::default_block_size + 77, 2 * ST::internal::default_block_size - 1,
+                                n - 1};
+  for(const std::size_t place : places) {
+    std::vector<double> v = values;
+    v[place] = 2. + static_cast<double>(place % 7);
+    const auto value_of = [&](std::size_t i) { return v[i]; };
+    EXPECT_EQ((ST::internal::largest_by_blocks<CGAL::Sequential_tag>(n, value_of)), v[place]);
+    EXPECT_EQ((ST::internal::largest_by_blocks<CGAL::Sequential_tag>(place, value_of)),
+              place == 0 ? 0. : *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(place)));
+    for_each_thread_count([&](int threads) {
+      EXPECT_EQ((ST::internal::largest_by_blocks<Parallel>(n, value_of)), v[place]) << threads << " threads";
+    });
+  }
+  const auto negative = [&](std::size_t i) { return -1.5 + values[i] / 4; };
+  for_each_thread_count([&](int threads) {
+    EXPECT_EQ((ST::internal::largest_by_blocks<Parallel>(0, negative, -7.)), -7.) << threads << " threads";
+    EXPECT_EQ((ST::internal::largest_by_blocks<Parallel>(n, negative)), 0.) << threads << " threads";
+    EXPECT_EQ((ST::internal::largest_by_blocks<Parallel>(n, negative, -7.)),
+              -1.5 + *std::max_element(values.begin(), values.end()) / 4)
+      << threads << " threads";
+  });
+}
+
 // Blocks of many sizes filled with a pattern and freed: the allocator hands the same memory out
 // again to the next blocks of these sizes, so that an entry of an `Uninitialized_vector` that a
 // pass forgot to write shows as the pattern, not as a lucky zero of fresh memory.

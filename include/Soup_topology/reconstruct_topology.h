@@ -418,19 +418,13 @@ public:
     using Tag = std::conditional_t<std::is_same<typename Geom_traits::FT, double>::value, ConcurrencyTag,
                                    CGAL::Sequential_tag>;
     const typename Geom_traits::Compute_squared_distance_3 squared_distance = gt_.compute_squared_distance_3_object();
-    const std::size_t n = merged_into_.size();
-    std::vector<double> largest_of_block(number_of_blocks(n), 0.);
-    for_each_block<Tag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      double largest = 0;
-      for(std::size_t v = begin; v != end; ++v) {
-        if(merged_into_[v] == v) continue;
-        std::size_t w = merged_into_[v];
-        while(merged_into_[w] != w) w = merged_into_[w];
-        largest = std::max(largest, std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w]))));
-      }
-      largest_of_block[b] = largest;
+    const double largest = largest_by_blocks<Tag>(merged_into_.size(), [&](std::size_t v) {
+      std::size_t w = merged_into_[v];
+      if(w == v) return 0.;
+      while(merged_into_[w] != w) w = merged_into_[w];
+      return std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w])));
     });
-    for(double d : largest_of_block) report_.max_displacement = std::max(report_.max_displacement, d);
+    report_.max_displacement = std::max(report_.max_displacement, largest);
     std::vector<std::uint32_t>().swap(merged_into_);
   }
 

@@ -102,14 +102,7 @@ int moderate_scale_exponent_of(const std::vector<Point>& points)
   using Tag = std::conditional_t<std::is_same<typename CGAL::Kernel_traits<Point>::Kernel::FT, double>::value,
                                  ConcurrencyTag, CGAL::Sequential_tag>;
   const std::size_t n = points.size();
-  std::vector<double> largest_of_block(number_of_blocks(n), 0.);
-  for_each_block<Tag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-    double largest = 0;
-    for(std::size_t i = begin; i != end; ++i) largest = std::max(largest, largest_coordinate(points[i]));
-    largest_of_block[b] = largest;
-  });
-  double largest = 0;
-  for(double x : largest_of_block) largest = std::max(largest, x);
+  const double largest = largest_by_blocks<Tag>(n, [&](std::size_t i) { return largest_coordinate(points[i]); });
   const int e = moderate_scale_exponent(largest);
   if(e == 0) return 0;
   return first_index_where<Tag>(n, [&](std::size_t i) { return !scales_exactly(points[i], e); }) == n ? e : 0;

@@ -239,6 +239,23 @@ std::size_t first_index_where(std::size_t n, const Predicate& bad)
   }
 }
 
+/// the largest of `value_of(i)` over `[0, n)` and `smallest` (blocks taken in parallel when
+/// `ConcurrencyTag` asks for it, then the largest of the blocks). A maximum is the same in any
+/// order, so the result does not depend on the threads, provided `value_of` gives no NaN.
+template <class ConcurrencyTag, class ValueOf>
+double largest_by_blocks(std::size_t n, const ValueOf& value_of, double smallest = 0.)
+{
+  std::vector<double> largest_of_block(number_of_blocks(n), smallest);
+  for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    double largest = smallest;
+    for(std::size_t i = begin; i != end; ++i) largest = std::max(largest, static_cast<double>(value_of(i)));
+    largest_of_block[b] = largest;
+  });
+  double largest = smallest;
+  for(const double x : largest_of_block) largest = std::max(largest, x);
+  return largest;
+}
+
 /// calls `f(begin, end)` for every run `[begin, end)` of `[0, n)`, a run being a maximal range of
 /// consecutive elements `i` for which `continues(i)` holds except at its first (`continues(0)`
 /// is not asked). With `ConcurrencyTag` the runs are handed to TBB's threads by the block where
