@@ -335,9 +335,6 @@ private:
     const std::size_t n = candidates_.size();
     // The steps below read the candidates' points from the soup (the candidates are in increasing
     // order of their vertices): no copy of them is made before the octree's own.
-    // The order of the clusters, sorted here: its scratch is freed before the octree and the
-    // rows are built (the peak memory of the weld).
-    sort_candidates_lexicographically();
     // The grid's cells are counted first and the grid built only for a dense cluster. The grid
     // joins whole cells and two cells by their nearest pair, which is right for one tolerance
     // only: with per-vertex tolerances it is not used (every pair is listed by the self-join and
@@ -403,17 +400,10 @@ private:
     const Uninitialized_vector<std::uint32_t> order = tree_->number_points_in_tree_order();
     const std::size_t n = order.size();
     Uninitialized_vector<size_type> by_position(n); // (written whole below)
-    Uninitialized_vector<std::uint32_t> position(n);
     for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for(std::size_t j = begin; j < end; ++j) {
-        by_position[j] = candidates_[order[j]];
-        position[order[j]] = static_cast<std::uint32_t>(j);
-      }
+      for(std::size_t j = begin; j < end; ++j) by_position[j] = candidates_[order[j]];
     });
     candidates_.swap(by_position);
-    for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for(std::size_t i = begin; i < end; ++i) lex_order_[i] = position[lex_order_[i]];
-    });
   }
 
   // After the ambiguous sites, the candidates in increasing vertex order again, as the guard and
@@ -633,6 +623,10 @@ private:
   // only what belongs to its components; the refusals told on the way are kept by block and
   // told, in block order, in the lexicographic order of their representatives, as if the
   // candidates were all taken in that order: the result is that of one thread.
+  //
+  // No order of all the candidates is needed: each component is sorted on its own, by its block,
+  // before its visits (`Less_xyz_3`, ties by vertex; a total order, so a component has one order
+  // whatever the order its candidates come in).
   void form_clusters()
   {
     const std::size_t n = candidates_.size();
@@ -644,16 +638,16 @@ private:
     // The components are read as roots from here on: their storage becomes `root_`.
     root_ = components_.take_roots();
     for(std::uint32_t c = 0; c < n; ++c) ++component_size_[root_[c]];
-    Uninitialized_vector<std::uint32_t> visits(n), next_visit(n); // (written before they are read)
-    rank_.resize(n);
+    // The candidates of the components of two or more, component after component in the order of
+    // their roots; each component is put in lexicographic order by its block below.
+    Uninitialized_vector<std::uint32_t>& visits = visits_;
+    Uninitialized_vector<std::uint32_t> next_visit(n); // (written before it is read)
+    visits.resize(n);
     std::uint32_t number_of_visits = 0;
     for(std::uint32_t c = 0; c < n; ++c)
       if(root_[c] == c && component_size_[c] >= 2) { next_visit[c] = number_of_visits; number_of_visits += component_size_[c]; }
-    for(std::uint32_t position = 0; position < n; ++position) {
-      const std::uint32_t c = lex_order_[position];
-      rank_[c] = position;
+    for(std::uint32_t c = 0; c < n; ++c)
       if(component_size_[root_[c]] >= 2) visits[next_visit[root_[c]]++] = c;
-    }
     visits.resize(number_of_visits);
     Uninitialized_vector<std::uint32_t>().swap(next_visit);
     // Blocks of whole components, of at least `visits_per_block` visits each (the last one may
@@ -666,19 +660,35 @@ private:
     const std::size_t blocks = block_begin.size() - 1;
     std::vector<Cluster_block> results(blocks);
     Scratch_pool pool(tables_.number_of_triangles());
+    const typename Kernel::Compare_xyz_3 compare_xyz = kernel_.compare_xyz_3_object();
     auto run_block = [&](std::size_t b) {
       std::unique_ptr<Cluster_scratch> scratch = pool.acquire();
       Cluster_block& out = results[b];
       const std::size_t end = block_begin[b + 1];
+      // Each component of the block in lexicographic order. The points of the candidates a few
+      // components ahead are asked for first: in a soup whose triangles come in no spatial order
+      // they are far apart (hints; the sort reads them, and the visits find them in cache).
+      const auto at = [&](std::size_t k) { return visits.begin() + static_cast<std::ptrdiff_t>(k); };
+      std::size_t asked = block_begin[b];
+      for(std::size_t k = block_begin[b]; k != end;) {
+        const std::size_t component_end = k + component_size_[root_[visits[k]]];
+#if defined(__GNUC__) || defined(__clang__)
+        constexpr std::size_t points_ahead = 48;
+        for(; asked < std::min(end, component_end + points_ahead); ++asked)
+          __builtin_prefetch(&candidate_point(visits[asked]));
+#endif
+        std::sort(at(k), at(component_end),
+                  [&](std::uint32_t x, std::uint32_t y) { return less_lexicographically(x, y, compare_xyz); });
+        k = component_end;
+      }
+      (void)asked;
       for(std::size_t k = block_begin[b]; k != end; ++k) {
         if(!dense_) prefetch_visits(visits, k, end, *scratch);
         const std::uint32_t rep = visits[k];
         if(assigned_[rep]) continue;
         assigned_[rep] = 1;
         gather_members(rep, *scratch);
-        const std::size_t first_refusal = out.refusals.size();
         const std::uint32_t cluster_size = join_members(rep, *scratch, out);
-        for(std::size_t r = first_refusal; r < out.refusals.size(); ++r) out.refusals[r].rank = rank_[rep];
         largest_cluster_[root_[rep]] = std::max(largest_cluster_[root_[rep]], cluster_size);
       }
       pool.release(scratch);
@@ -694,10 +704,14 @@ private:
       deferred_refusals_.insert(deferred_refusals_.end(), block.refusals.begin(), block.refusals.end());
       std::vector<Deferred_refusal>().swap(block.refusals);
     }
+    // (the refusals of one representative are together, in the order they were met)
     std::stable_sort(deferred_refusals_.begin(), deferred_refusals_.end(),
-                     [](const Deferred_refusal& a, const Deferred_refusal& b) { return a.rank < b.rank; });
+                     [&](const Deferred_refusal& a, const Deferred_refusal& b) {
+                       return a.representative != b.representative &&
+                              less_lexicographically(candidate_of_[a.representative], candidate_of_[b.representative],
+                                                     compare_xyz);
+                     });
     for(const Deferred_refusal& r : deferred_refusals_) visitor_.on_refusal(r.vertex, r.representative, r.reason);
-    Uninitialized_vector<std::uint32_t>().swap(rank_);
     release_tolerance_graph();
   }
 
@@ -790,67 +804,6 @@ private:
     Uninitialized_vector<std::uint32_t>().swap(row_size_);
   }
 
-  // `lex_order_`: the candidates sorted by `Less_xyz_3`, ties by index. With double coordinates
-  // `Less_xyz_3` compares x, then y, then z, as `<` does (-0 equal to 0): a stable radix sort by x
-  // (in index order), then each run of equal x sorted by (y, z, index), gives the same order.
-  void sort_candidates_lexicographically()
-  {
-    const std::size_t n = candidates_.size();
-    lex_order_.resize(n);
-    if constexpr(std::is_same<FT, double>::value) {
-      // The bits of a double, turned into an unsigned integer of the same order.
-      auto ordered_bits = [](double x) {
-        x += 0.0; // -0 becomes 0
-        std::uint64_t bits;
-        std::memcpy(&bits, &x, sizeof bits);
-        return (bits >> 63) != 0 ? ~bits : bits | (std::uint64_t(1) << 63);
-      };
-      struct Item { std::uint64_t key; std::uint32_t id; };
-      // written whole before they are read, on TBB's threads in a parallel weld
-      Uninitialized_vector<Item> items(n), buffer;
-      const auto make_item = [&](std::size_t c) {
-        items[c] = {ordered_bits(candidate_point(c).x()), static_cast<std::uint32_t>(c)};
-      };
-      if(parallel_) {
-        for_each_index<CGAL::Parallel_if_available_tag>(n, make_item);
-        sort_by_key<CGAL::Parallel_if_available_tag>(items, buffer);
-      } else {
-        for(std::size_t c = 0; c < n; ++c) make_item(c);
-        sort_by_key<CGAL::Sequential_tag>(items, buffer);
-      }
-      Uninitialized_vector<Item>().swap(buffer);
-      // The candidates of equal x, sorted by (y, z, candidate): a total order, so each run has one
-      // result, sorted on TBB's threads run by run in a parallel weld.
-      const auto same_x_as_previous = [&](std::size_t i) { return items[i].key == items[i - 1].key; };
-      const auto sort_run = [&](std::size_t i, std::size_t j) {
-        if(j - i > 1)
-          std::sort(items.begin() + static_cast<std::ptrdiff_t>(i), items.begin() + static_cast<std::ptrdiff_t>(j),
-                    [&](const Item& a, const Item& b) {
-                      const Point& p = candidate_point(a.id);
-                      const Point& q = candidate_point(b.id);
-                      if(p.y() != q.y()) return p.y() < q.y();
-                      if(p.z() != q.z()) return p.z() < q.z();
-                      return a.id < b.id;
-                    });
-      };
-      if(parallel_)
-        for_each_run<CGAL::Parallel_if_available_tag>(n, same_x_as_previous, sort_run);
-      else
-        for_each_run<CGAL::Sequential_tag>(n, same_x_as_previous, sort_run);
-      const auto take_id = [&](std::size_t i) { lex_order_[i] = items[i].id; };
-      if(parallel_)
-        for_each_index<CGAL::Parallel_if_available_tag>(n, take_id);
-      else
-        for(std::size_t i = 0; i < n; ++i) take_id(i);
-    } else {
-      const typename Kernel::Less_xyz_3 less_xyz = kernel_.less_xyz_3_object();
-      std::iota(lex_order_.begin(), lex_order_.end(), 0u);
-      std::stable_sort(lex_order_.begin(), lex_order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return less_xyz(candidate_point(a), candidate_point(b));
-      });
-    }
-  }
-
   // The unassigned neighbours of the representative `rep` that share no triangle with it,
   // nearest first (ties by `Less_xyz_3`, then by candidate: a total order, so that the members
   // come in the same order whatever the order of the row), into `scratch.members`.
@@ -906,6 +859,16 @@ private:
     members.erase(std::unique(members.begin(), members.end()), members.end());
   }
 
+  // The lexicographic order of the clusters' visits: `Less_xyz_3` on the points of candidates `a`
+  // and `b` (one `Compare_xyz_3`), then their vertices (equal points only when the caller's
+  // points are not pairwise distinct). A total order, whatever the numbering of the candidates.
+  bool less_lexicographically(std::uint32_t a, std::uint32_t b, const typename Kernel::Compare_xyz_3& compare_xyz) const
+  {
+    const CGAL::Comparison_result r = compare_xyz(candidate_point(a), candidate_point(b));
+    if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
+    return candidates_[a] < candidates_[b];
+  }
+
   // `Less_xyz_3` on the points of candidates `a` and `b` (one `Compare_xyz_3`), then their
   // indices (equal points only when the caller's points are not pairwise distinct).
   bool less_in_xyz_then_index(std::uint32_t a, std::uint32_t b, const typename Kernel::Compare_xyz_3& compare_xyz) const
@@ -930,7 +893,7 @@ private:
       if(fixed_ != nullptr && (*fixed_)[mv]) {
         // mv received welds in an earlier call: it may be a representative, never move.
         ++out.refused_holds_welds;
-        out.refusals.push_back({0, mv, rep_v, Refusal_reason::HOLDS_WELDS});
+        out.refusals.push_back({mv, rep_v, Refusal_reason::HOLDS_WELDS});
         continue;
       }
       bool conflict = false;
@@ -938,7 +901,7 @@ private:
         if(in_cluster_mark[t] == cluster_id && !(collapse_ && collapsible(t, mv, rep_v))) { conflict = true; break; }
       if(conflict) {
         ++out.refused_same_triangle;
-        out.refusals.push_back({0, mv, rep_v, Refusal_reason::SAME_TRIANGLE});
+        out.refusals.push_back({mv, rep_v, Refusal_reason::SAME_TRIANGLE});
         continue;
       }
       for(size_type t : tables_.triangles_around_vertex(mv)) in_cluster_mark[t] = cluster_id;
@@ -986,13 +949,15 @@ private:
     for(std::uint32_t c = 0; c < n; ++c)
       if(root_[c] == c && component_size_[c] >= 2 && largest_cluster_[c] != component_size_[c])
         ambiguous[c] = 1;
-    for(const std::uint32_t c : lex_order_) {
+    // (an ambiguous component has two candidates or more: its first visit is its smallest point)
+    for(const std::uint32_t c : visits_) {
       const std::uint32_t root = root_[c];
       if(ambiguous[root]) {
         report_.ambiguous_sites.push_back(candidates_[c]);
         ambiguous[root] = 0;
       }
     }
+    Uninitialized_vector<std::uint32_t>().swap(visits_);
     std::sort(report_.ambiguous_sites.begin(), report_.ambiguous_sites.end());
   }
 
@@ -1318,17 +1283,15 @@ private:
                                                         // a buffer holds at most `row_buffer_limit` entries)
   Uninitialized_vector<std::uint32_t> row_size_;        // by candidate: the length of its row (fewer than the candidates)
   // Clusters.
-  Uninitialized_vector<std::uint32_t> lex_order_;       // candidates in lexicographic order (written whole)
+  Uninitialized_vector<std::uint32_t> visits_;          // the clusters' visits: by component, each sorted
   Uninitialized_vector<size_type> target_;              // representative of a merged vertex, or none
   Uninitialized_vector<std::uint32_t> candidate_of_;    // by vertex: its candidate, or not_candidate
   std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
-  Uninitialized_vector<std::uint32_t> rank_;            // by candidate: its position in `lex_order_`
   Uninitialized_vector<std::uint32_t> mate_of_;         // vertices sharing a triangle with the representative
   Uninitialized_vector<char> assigned_;                 // by candidate (one byte each: written by blocks in parallel)
   Uninitialized_vector<std::uint32_t> component_size_, largest_cluster_;
   struct Deferred_refusal
   {
-    std::uint32_t rank;                                 // of the representative in `lex_order_`
     size_type vertex, representative;
     Refusal_reason reason;
   };
