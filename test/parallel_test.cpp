@@ -13,7 +13,6 @@
 
 #include "parallel_test_utilities.h"
 
-#include <mutex>
 #include <utility>
 
 namespace {
@@ -363,75 +362,6 @@ TEST(ParallelSortByKey, StableAndTheSequentialOrder)
     for(std::size_t i = 0; i < unzeroed.size(); ++i) different += unzeroed[i].id != expected[i].id;
     EXPECT_EQ(different, 0u);
     EXPECT_EQ(ST::internal::largest_tolerance_cell<Parallel>(cloud, 0.01), expected_cell);
-  });
-}
-
-// The runs of equal keys, each sorted by its own order: runs shorter than a block, runs that
-// cross one or many blocks, blocks without a start, a run at the very end; and a test of the
-// runs themselves (each given once, maximal, in order of its block).
-TEST(ParallelRuns, EveryRunSortedOnceWhateverTheThreads)
-{
-  std::mt19937_64 rng(11);
-  std::vector<std::uint32_t> keys;
-  while(keys.size() < 200000) {
-    const std::uint32_t key = static_cast<std::uint32_t>(keys.size());
-    const std::size_t length = rng() % 9 == 0 ? 1 + rng() % 70000 : 1 + rng() % 5;
-    keys.insert(keys.end(), length, key);
-  }
-  keys.insert(keys.end(), 3, std::uint32_t(-1)); // a short run ending the range
-  struct Item { std::uint32_t key, value; };
-  std::vector<Item> items(keys.size());
-  for(std::size_t i = 0; i < keys.size(); ++i) items[i] = {keys[i], static_cast<std::uint32_t>(rng() % 1000)};
-  // the expected order: each run of equal keys sorted by value, found here one element at a time
-  const auto by_value = [](const Item& a, const Item& b) { return a.value < b.value; };
-  std::vector<Item> expected = items;
-  for(std::size_t i = 0; i < expected.size();) {
-    std::size_t j = i + 1;
-    while(j < expected.size() && keys[j] == keys[i]) ++j;
-    std::stable_sort(expected.begin() + std::ptrdiff_t(i), expected.begin() + std::ptrdiff_t(j), by_value);
-    i = j;
-  }
-  const auto run_sorted = [&](auto tag, std::vector<std::pair<std::size_t, std::size_t>>& runs) {
-    std::vector<Item> sorted = items;
-    std::mutex mutex;
-    ST::internal::for_each_run<decltype(tag)>(
-      sorted.size(), [&](std::size_t i) { return sorted[i].key == sorted[i - 1].key; },
-      [&](std::size_t i, std::size_t j) {
-        std::stable_sort(sorted.begin() + std::ptrdiff_t(i), sorted.begin() + std::ptrdiff_t(j), by_value);
-        const std::lock_guard<std::mutex> lock(mutex);
-        runs.emplace_back(i, j);
-      });
-    std::sort(runs.begin(), runs.end());
-    return sorted;
-  };
-  std::vector<std::pair<std::size_t, std::size_t>> sequential_runs;
-  const std::vector<Item> sequential = run_sorted(CGAL::Sequential_tag(), sequential_runs);
-  std::size_t wrong = 0;
-  for(std::size_t i = 0; i < items.size(); ++i)
-    wrong += sequential[i].key != expected[i].key || sequential[i].value != expected[i].value;
-  EXPECT_EQ(wrong, 0u);
-  ASSERT_FALSE(sequential_runs.empty());
-  EXPECT_EQ(sequential_runs.front().first, 0u);
-  EXPECT_EQ(sequential_runs.back().second, items.size());
-  for(std::size_t r = 0; r < sequential_runs.size(); ++r) {
-    const auto [i, j] = sequential_runs[r];
-    EXPECT_LT(i, j);
-    if(r > 0) {
-      EXPECT_EQ(i, sequential_runs[r - 1].second);
-    }
-    for(std::size_t k = i + 1; k < j; ++k) ASSERT_EQ(items[k].key, items[i].key);
-    if(j < items.size()) {
-      EXPECT_NE(items[j].key, items[j - 1].key);
-    }
-  }
-  for_each_thread_count([&](int threads) {
-    std::vector<std::pair<std::size_t, std::size_t>> runs;
-    const std::vector<Item> sorted = run_sorted(Parallel(), runs);
-    std::size_t different = 0;
-    for(std::size_t i = 0; i < items.size(); ++i)
-      different += sorted[i].key != sequential[i].key || sorted[i].value != sequential[i].value;
-    EXPECT_EQ(different, 0u) << threads << " threads";
-    EXPECT_EQ(runs, sequential_runs) << threads << " threads";
   });
 }
 

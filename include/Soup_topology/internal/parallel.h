@@ -256,37 +256,6 @@ double largest_by_blocks(std::size_t n, const ValueOf& value_of, double smallest
   return largest;
 }
 
-/// calls `f(begin, end)` for every run `[begin, end)` of `[0, n)`, a run being a maximal range of
-/// consecutive elements `i` for which `continues(i)` holds except at its first (`continues(0)`
-/// is not asked). With `ConcurrencyTag` the runs are handed to TBB's threads by the block where
-/// they start: first every block finds its first start, then each block calls `f` for the runs
-/// that start in it, reading `continues` inside them only. `f` may reorder the elements of its run
-/// (sort them) as long as `continues` stays the same everywhere; the runs, and what `f` makes of
-/// each, do not depend on the number of threads.
-template <class ConcurrencyTag, class Continues, class F>
-void for_each_run(std::size_t n, const Continues& continues, const F& f)
-{
-  const std::size_t blocks = number_of_blocks(n);
-  std::vector<std::size_t> first_start(blocks + 1, n);
-  for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-    std::size_t i = begin;
-    while(i != end && i != 0 && continues(i)) ++i;
-    first_start[b] = i == end ? n : i;
-  });
-  // a block without a start takes none: its first start is that of the next block with one
-  for(std::size_t b = blocks; b-- > 0;) first_start[b] = std::min(first_start[b], first_start[b + 1]);
-  for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t, std::size_t) {
-    // (the runs of the block end at the next block's first start, where the next run starts)
-    const std::size_t last = first_start[b + 1];
-    for(std::size_t i = first_start[b]; i < last;) {
-      std::size_t j = i + 1;
-      while(j != last && continues(j)) ++j;
-      f(i, j);
-      i = j;
-    }
-  });
-}
-
 /// a stable sort of `items` by the digits of `digit_bits` bits of `key_of(item)` (an unsigned
 /// integer) that start at bits `low`, `low + digit_bits`, ... below `high`: one pass of counts and
 /// one scatter a digit, from the lowest, the passes whose digit is the same for all skipped. On
