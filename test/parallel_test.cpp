@@ -382,8 +382,9 @@ TEST(ParallelLargest, TheLargestOfAllBlocksWhereverItIs)
     v[place] = 2. + static_cast<double>(place % 7);
     const auto value_of = [&](std::size_t i) { return v[i]; };
     EXPECT_EQ((ST::internal::largest_by_blocks<CGAL::Sequential_tag>(n, value_of)), v[place]);
+    // (the values before `place`: their largest, or the floor 0 when all are negative)
     EXPECT_EQ((ST::internal::largest_by_blocks<CGAL::Sequential_tag>(place, value_of)),
-              place == 0 ? 0. : *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(place)));
+              place == 0 ? 0. : std::max(0., *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(place))));
     for_each_thread_count([&](int threads) {
       EXPECT_EQ((ST::internal::largest_by_blocks<Parallel>(n, value_of)), v[place]) << threads << " threads";
     });
