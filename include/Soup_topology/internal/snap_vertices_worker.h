@@ -803,7 +803,7 @@ private:
   }
 
   // The unassigned neighbours of the representative `rep` that share no triangle with it,
-  // nearest first (ties by `Less_xyz_3`, then by candidate: a total order, so that the members
+  // nearest first (ties by `Less_xyz_3`, then by vertex: a total order, so that the members
   // come in the same order whatever the order of the row), into `scratch.members`.
   void gather_members(std::uint32_t rep, Cluster_scratch& scratch)
   {
@@ -843,7 +843,7 @@ private:
         }
         const CGAL::Comparison_result r = compare_distance(center, candidate_point(a.second), candidate_point(b.second));
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_in_xyz_then_index(a.second, b.second, compare_xyz);
+        return less_lexicographically(a.second, b.second, compare_xyz);
       });
       for(std::size_t k = 0; k < members.size(); ++k) members[k] = member_distances[k].second;
     } else {
@@ -851,29 +851,21 @@ private:
         const CGAL::Comparison_result r = compare_distances(center, candidate_point(a), candidate_point(b),
                                                             compare_distance);
         if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-        return less_in_xyz_then_index(a, b, compare_xyz);
+        return less_lexicographically(a, b, compare_xyz);
       });
     }
     members.erase(std::unique(members.begin(), members.end()), members.end());
   }
 
-  // The lexicographic order of the clusters' visits: `Less_xyz_3` on the points of candidates `a`
-  // and `b` (one `Compare_xyz_3`), then their vertices (equal points only when the caller's
-  // points are not pairwise distinct). A total order, whatever the numbering of the candidates.
+  // The lexicographic order of the clusters' visits and of a cluster's members at equal distance:
+  // `Less_xyz_3` on the points of candidates `a` and `b` (one `Compare_xyz_3`), then their
+  // vertices (equal points only when the caller's points are not pairwise distinct). A total
+  // order, whatever the numbering of the candidates.
   bool less_lexicographically(std::uint32_t a, std::uint32_t b, const typename Kernel::Compare_xyz_3& compare_xyz) const
   {
     const CGAL::Comparison_result r = compare_xyz(candidate_point(a), candidate_point(b));
     if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
     return candidates_[a] < candidates_[b];
-  }
-
-  // `Less_xyz_3` on the points of candidates `a` and `b` (one `Compare_xyz_3`), then their
-  // indices (equal points only when the caller's points are not pairwise distinct).
-  bool less_in_xyz_then_index(std::uint32_t a, std::uint32_t b, const typename Kernel::Compare_xyz_3& compare_xyz) const
-  {
-    const CGAL::Comparison_result r = compare_xyz(candidate_point(a), candidate_point(b));
-    if(r != CGAL::EQUAL) return r == CGAL::SMALLER;
-    return a < b;
   }
 
   // Joins the members to the cluster of `rep` in turn, refusing those that hold welds or share
