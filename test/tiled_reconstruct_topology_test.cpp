@@ -9,6 +9,7 @@
 #include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/tiled_reconstruct_topology.h>
+#include <Soup_topology/internal/tile_parts.h>
 #include <Soup_topology/internal/tile_taint.h>
 
 #include "soup_generators.h"
@@ -291,6 +292,75 @@ TEST(TiledReconstruction, ChainLongerThanTheHaloIsRepairedAgain)
     EXPECT_EQ(progress.back().triangles_done, soup.triangles.size());
     EXPECT_EQ(progress.back().triangles, soup.triangles.size());
   }
+}
+
+// Parts that share points on their borders, merged from part files and in memory: the same
+// canonical soup, that of the parts' triangles put together; the files are removed with the
+// merge's reader, and a truncated file or a triangle on a point the part lacks is refused.
+TEST(TiledReconstruction, PartFilesMergeAsThePartsInMemory)
+{
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> coordinate(0, 6);
+  std::vector<ST::internal::Soup_part> parts(5);
+  Soup whole;
+  for(ST::internal::Soup_part& part : parts) {
+    // points on a small grid: many are in several parts, some twice in one triangle's part
+    for(int k = 0; k < 40; ++k) {
+      const std::array<double, 3> q{{0.5 * coordinate(random), 0.25 * coordinate(random), double(coordinate(random))}};
+      if(std::find(part.points.begin(), part.points.end(), q) == part.points.end()) part.points.push_back(q);
+    }
+    // every point used (as a part's are), then random triangles
+    const std::uint32_t n = std::uint32_t(part.points.size());
+    std::uniform_int_distribution<std::uint32_t> corner(0, n - 1);
+    for(std::uint32_t k = 0; k < n + 60; ++k) {
+      using Corners = std::array<std::uint32_t, 3>;
+      const Corners t =
+        k < n ? Corners{{k, (k + 1) % n, (k + 2) % n}} : Corners{{corner(random), corner(random), corner(random)}};
+      part.triangles.push_back(t);
+      const std::size_t first = whole.points.size();
+      for(std::uint32_t v : t) whole.points.emplace_back(part.points[v][0], part.points[v][1], part.points[v][2]);
+      whole.triangles.push_back({first, first + 1, first + 2});
+    }
+  }
+  Canonical expected;
+  ST::canonical_triangle_soup(whole.points, whole.triangles, expected.points, expected.triangles);
+
+  const std::string folder = soup_test::temporary_folder("parts");
+  std::vector<std::string> files;
+  for(std::size_t k = 0; k < parts.size(); ++k) {
+    files.push_back(ST::internal::part_file_name(folder, k));
+    ST::internal::write_part_file(files.back(), parts[k]);
+  }
+  Canonical from_files;
+  {
+    ST::internal::Part_files reader(files);
+    EXPECT_EQ(reader.number_of_points(2), parts[2].points.size());
+    EXPECT_EQ(reader.number_of_triangles(2), parts[2].triangles.size());
+    ST::internal::merge_in_canonical_order(reader, from_files.points, from_files.triangles);
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(folder)) << "part files left in " << folder;
+  Canonical in_memory_parts;
+  ST::internal::merge_in_canonical_order(parts, in_memory_parts.points, in_memory_parts.triangles);
+  EXPECT_TRUE(same(expected, from_files));
+  EXPECT_TRUE(same(expected, in_memory_parts));
+  for(const ST::internal::Soup_part& part : parts) EXPECT_TRUE(part.points.empty() && part.triangles.empty());
+
+  ST::internal::Soup_part part;
+  part.points = {{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}};
+  part.triangles = {{{0, 1, 2}}};
+  const std::string file = ST::internal::part_file_name(folder, 7);
+  ST::internal::write_part_file(file, part);
+  std::filesystem::resize_file(file, std::filesystem::file_size(file) - 1);
+  EXPECT_THROW(ST::internal::Part_files({file}), ST::IO::Read_error);
+  part.triangles = {{{0, 1, 3}}};
+  ST::internal::write_part_file(file, part);
+  {
+    ST::internal::Part_files reader({file});
+    Canonical c;
+    EXPECT_THROW(ST::internal::merge_in_canonical_order(reader, c.points, c.triangles), ST::IO::Read_error);
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(folder));
+  std::filesystem::remove_all(folder);
 }
 
 // A crowd: 6,000 small triangles whose corners all lie within a tenth of the tolerance of each

@@ -330,14 +330,14 @@ enum Tile_outcome : std::uint64_t { kept_clean, tainted_owned, degenerate_under_
 
 /// this process's runs of a round: the tiles at positions `rank`, `rank + size`, ... of `to_do`,
 /// each repaired from its spill file (then removed) with the halo `halo`. The owned triangles of
-/// a clean run are kept in `kept` by a process alone, else written to the tile's part file.
+/// a clean run are written to the tile's part file in `folder`.
 /// Returns four values a run: its position in `to_do`, its `Tile_outcome`, the size of its
 /// region, its tainted owned triangles. A process stops at its first run that needs the whole
 /// soup: `walk_round_outcomes()` stops there, or before.
 template <class ConcurrencyTag, class TileTeam, class Progress>
 std::vector<std::uint64_t> repair_round_share(TileTeam& team, const Tile_plan& plan, const std::vector<std::size_t>& to_do,
                                               const std::string& folder, double halo, const Tiled_repair_settings& settings,
-                                              std::vector<Soup_part>& kept, Tile_progress& where, const Progress& progress)
+                                              Tile_progress& where, const Progress& progress)
 {
   std::vector<std::uint64_t> runs;
   std::vector<Tile_corners> region;
@@ -359,12 +359,7 @@ std::vector<std::uint64_t> repair_round_share(TileTeam& team, const Tile_plan& p
     ++where.runs_done;
     if(outcome == kept_clean) where.triangles_done += plan.owned_triangles(tile);
     progress(where);
-    if(outcome == kept_clean) {
-      if(team.size() == 1)
-        kept.push_back(std::move(run.owned));
-      else
-        write_part_file(part_file_name(folder, tile), run.owned);
-    }
+    if(outcome == kept_clean) write_part_file(part_file_name(folder, tile), run.owned);
     if(outcome == degenerate_under_collapse || outcome == crowded) break;
   }
   return runs;
@@ -450,8 +445,9 @@ Soup_part repair_whole_soup(const TriangleSource& source, const Tile_plan& plan,
 /// whose coordinates reach beyond 2^128 or stay below 2^-128, which the tiles would decide at the
 /// input's scale, is repaired as one tile, scaled as in memory (the report says so).
 ///
-/// Memory: one tile's region and its repair, and the owned triangles of the tiles done on the
-/// points they use (12 bytes a triangle, 24 a point), merged at the end.
+/// Memory: one tile's region and its repair. The owned triangles of each tile done go to a part
+/// file in `folder` on the points they use (12 bytes a triangle, 24 a point on disk), read back
+/// by the merge at the end (the points of all parts, then the triangles part by part).
 ///
 /// \tparam ConcurrencyTag passed on to the steps of each tile's repair (the tiles run one after
 ///         the other)
@@ -534,7 +530,6 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
 
   // Rounds: every tile to do is repaired from its spill file; the tiles with a tainted owned
   // triangle are spilled again, together in one stream of the source, with the halo doubled.
-  std::vector<internal::Soup_part> kept;
   std::vector<std::size_t> to_do(plan.number_of_tiles());
   for(std::size_t tile = 0; tile < to_do.size(); ++tile) to_do[tile] = tile;
   // Past this halo every point is deeper than twice the tolerance plus the cube's diagonal.
@@ -544,7 +539,7 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   for(double h = halo; !to_do.empty() && !whole; h *= 2) {
     report.largest_halo = std::max(report.largest_halo, h);
     std::vector<std::uint64_t> runs =
-      internal::repair_round_share<ConcurrencyTag>(team, plan, to_do, folder, h, settings, kept, where, progress);
+      internal::repair_round_share<ConcurrencyTag>(team, plan, to_do, folder, h, settings, where, progress);
     if(!alone) runs = team.all_gather(runs);
     std::vector<std::size_t> tainted = internal::walk_round_outcomes(runs, to_do, report, whole);
     if(whole || tainted.empty()) break;
@@ -565,19 +560,20 @@ Tiled_reconstruction_report tiled_reconstruct_topology(TileTeam& team, const Tri
   points.clear();
   triangles.clear();
   if(!root) return report;
-  if(!alone) {
-    // Every process's part files are written (the gather of the last round): rank 0 reads them.
-    for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile) {
-      const std::string part = internal::part_file_name(folder, tile);
-      if(!whole) kept.push_back(internal::read_part_file(part));
-      std::remove(part.c_str());
-    }
-  }
+  // Every process's part files are written (with a team: the gather of the last round); rank 0
+  // merges them, reading them back, or, for the whole soup, removes those of the runs before.
+  std::vector<std::string> part_files;
+  for(std::size_t tile = 0; tile < plan.number_of_tiles(); ++tile)
+    part_files.push_back(internal::part_file_name(folder, tile));
   if(whole) {
-    kept.clear();
-    kept.push_back(internal::repair_whole_soup<ConcurrencyTag>(source, plan, folder, settings, report));
+    for(const std::string& part : part_files) std::remove(part.c_str());
+    std::vector<internal::Soup_part> one(1);
+    one[0] = internal::repair_whole_soup<ConcurrencyTag>(source, plan, folder, settings, report);
+    internal::merge_in_canonical_order(one, points, triangles);
+  } else {
+    internal::Part_files parts(std::move(part_files));
+    internal::merge_in_canonical_order(parts, points, triangles);
   }
-  internal::merge_in_canonical_order(kept, points, triangles);
   report.output_points = points.size();
   report.output_triangles = triangles.size();
   return report;
