@@ -938,8 +938,16 @@ int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* 
 int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
-  // Under --max-memory the memory model's limit comes first: freed memory goes back to the system.
-  if(!o.max_memory) tool::keep_freed_memory_for_reuse();
+  // Under --max-memory the memory model's limit comes first: freed memory goes back to the system,
+  // and large blocks come in huge pages (the program is executed again for that, before it reads
+  // or writes anything).
+  if(o.max_memory) {
+    std::vector<std::string> arguments{"repair"};
+    arguments.insert(arguments.end(), args.begin(), args.end());
+    tool::restart_with_huge_page_mappings(arguments);
+  } else {
+    tool::keep_freed_memory_for_reuse();
+  }
   if(!o.spill_folder.empty() && o.tiles == 0 && !o.max_memory)
     throw Usage_error("repair: --spill-folder goes with --tiles N or --max-memory SIZE");
   for(const std::string& in : all_inputs(o)) check_repair_paths(in, o.out, o.report_file);
