@@ -721,24 +721,24 @@ private:
 // The model of the peak resident memory of `repair --tiles N` (doc/Soup_topology/Tiled_repair.md,
 // "Bounded memory"), in bytes, for a soup of `n` triangles of which `held` bytes are held whole
 // (a soup that is not a binary STL is read whole first). Measured on the jittered tori of 1M and
-// 4M triangles: a tile's region costs about 560 bytes a triangle while it is repaired, the kept
-// triangles 48 bytes a triangle of the soup; the largest region is at most 1.25 times a tile's
-// share plus 25,000 triangles of halo. After the tiles: the merge, 24 bytes an output triangle
-// and 88 an output point (the parts, their points sorted, the output), then the orientation and
-// the statistics, 64 a triangle and 48 a point (the soup and the tables of the output). For one
-// point to two triangles, as on a closed mesh, that is 88 a triangle (78 measured at 4M, 86 at
-// 40M); a soup of loose triangles (3 points a triangle) needs 288 (300k: 93 MiB measured).
+// 4M triangles: a tile's region costs about 560 bytes a triangle while it is repaired (the
+// triangles kept go to part files); the largest region is at most 1.25 times a tile's share plus
+// 25,000 triangles of halo. After the tiles: the merge, 12 bytes an output triangle and 56 an
+// output point (the points of the parts with their order and their output index, the output
+// points, then the output triangles), then the orientation and the statistics, 64 a triangle and
+// 48 a point (the soup and the tables of the output). For one point to two triangles, as on a
+// closed mesh, that is 88 a triangle (78 measured at 4M, 86 at 40M); a soup of loose triangles
+// (3 points a triangle) needs 208 (300k: 93 MiB measured).
 struct Tiled_memory_model
 {
-  static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 560, per_kept_triangle = 48,
-                          merge_per_triangle = 24, merge_per_point = 88, per_output_triangle = 64,
-                          per_output_point = 48;
+  static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 560, merge_per_triangle = 12,
+                          merge_per_point = 56, per_output_triangle = 64, per_output_point = 48;
   double n, held;
   // the peak while the tiles are repaired
   double tiles_peak(std::size_t tiles) const
   {
     const double region = tiles == 1 ? n : std::min(n, 1.25 * n / double(tiles) + 25000);
-    return base + held + per_kept_triangle * n + per_region_triangle * region;
+    return base + held + per_region_triangle * region;
   }
   // the peak of the merge, the orientation and the writing of `triangles` on `points`
   static double output_need(double triangles, double points)
