@@ -721,10 +721,10 @@ private:
 // The model of the peak resident memory of `repair --tiles N` (doc/Soup_topology/Tiled_repair.md,
 // "Bounded memory"), in bytes, for a soup of `n` triangles of which `held` bytes are held whole
 // (a soup that is not a binary STL is read whole first). Measured on the jittered tori of 1M and
-// 4M triangles: a tile's region costs about 600 bytes a triangle while it is repaired (560 with
-// 4 KiB pages; its large blocks in huge pages, up to 590 measured on 2 threads; the triangles
-// kept go to part files); the largest region is at most 1.25 times a tile's share plus 25,000
-// triangles of halo. After the tiles: the merge, 12 bytes an output triangle and 56 an
+// 4M triangles: the largest region is at most 1.25 times a tile's share plus 25,000 triangles of
+// halo, and a region costs at most 640 bytes a triangle of that bound while it is repaired (560
+// measured with 4 KiB pages; with its large blocks in huge pages, 566 on 1 thread and 598 on 2,
+// the regions of 8 tiles of 4M; the triangles kept go to part files). After the tiles: the merge, 12 bytes an output triangle and 56 an
 // output point (the points of the parts with their order and their output index, the output
 // points, then the output triangles), then the orientation and the statistics, 64 a triangle and
 // 48 a point (the soup and the tables of the output). For one point to two triangles, as on a
@@ -732,7 +732,7 @@ private:
 // (3 points a triangle) needs 208 (300k: 93 MiB measured).
 struct Tiled_memory_model
 {
-  static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 600, merge_per_triangle = 12,
+  static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 640, merge_per_triangle = 12,
                           merge_per_point = 56, per_output_triangle = 64, per_output_point = 48;
   double n, held;
   // the peak while the tiles are repaired
