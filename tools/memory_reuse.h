@@ -113,8 +113,8 @@ inline std::size_t ask_for_huge_pages_on_the_heap()
 /// given back when it is freed: the peak is what the model counts), but those mappings are asked
 /// for in transparent huge pages, as glibc does with its tunable `glibc.malloc.hugetlb=1`
 /// (glibc 2.35 and later; older ones ignore it). Each tile's region is new memory: with 4 KiB
-/// pages its faults took a third of `repair --max-memory 400M` on the 4M jittered torus (17.8 s
-/// against 10.7 s with the tunable, peak RSS 386 MB against 392 MB). A tunable is read when the
+/// pages its faults took a third of `repair --max-memory 400M` on the 4M jittered torus in 8 tiles
+/// (17.8 s against 10.7 s with the tunable, 2 threads; peak RSS 377 MiB against 385 MiB). A tunable is read when the
 /// program starts, so this sets it and executes the program again with the same arguments
 /// (`/proc/self/exe`), once: the environment then holds `GLIBC_TUNABLES`, which also leaves alone
 /// a policy that the user set there. Where the program cannot be executed again, it goes on as
