@@ -724,12 +724,13 @@ private:
 // 4M triangles: the largest region is at most 1.25 times a tile's share plus 25,000 triangles of
 // halo, and a region costs at most 640 bytes a triangle of that bound while it is repaired (560
 // measured with 4 KiB pages; with its large blocks in huge pages, 566 on 1 thread and 598 on 2,
-// the regions of 8 tiles of 4M; the triangles kept go to part files). After the tiles: the merge, 12 bytes an output triangle and 56 an
-// output point (the points of the parts with their order and their output index, the output
-// points, then the output triangles), then the orientation and the statistics, 64 a triangle and
-// 48 a point (the soup and the tables of the output). For one point to two triangles, as on a
-// closed mesh, that is 88 a triangle (78 measured at 4M, 86 at 40M); a soup of loose triangles
-// (3 points a triangle) needs 208 (300k: 93 MiB measured).
+// the regions of 8 tiles of 4M; the triangles kept go to part files). After the tiles: the
+// merge, 12 bytes an output triangle and 56 an output point (the points of the parts with their
+// order and their output index, the output points, then the output triangles), then the
+// orientation and the statistics, 64 a triangle and 48 a point (the soup and the tables of the
+// output). For one point to two triangles, as on a closed mesh, that is 88 a triangle (78
+// measured at 4M, 86 at 40M); a soup of loose triangles (3 points a triangle) needs 208 (300k:
+// 93 MiB measured while the kept triangles were in memory).
 struct Tiled_memory_model
 {
   static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 640, merge_per_triangle = 12,
