@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
@@ -847,6 +848,57 @@ TEST(Octree, SegmentJoinBesideACrowdMatchesSegmentQueries)
     check_segment_join<Epick>(grid_beside_a_crowd(56, 30, 300), 8, strategy);
     check_segment_join<Epick>(grid_beside_a_crowd(57, 30, 300), 32, strategy);
     check_segment_join<Epeck>(grid_beside_a_crowd(58, 20, 200), 16, strategy);
+  }
+}
+
+// Points of a lattice of step 1/8, and copies of them moved by exactly 2^-20 along one axis: many
+// coordinates are equal along every axis, so that the short segments of a leaf (the lattice's
+// edges and diagonals) put many of their shared candidates on the faces of their boxes and on
+// the same coordinate along the side cut into slabs. At radii 0, 2^-20 and 1/8 many candidates
+// lie at exactly the radius. Every segment's answer, in the tree's order and sorted, is the
+// brute force's.
+TEST(Octree, SegmentJoinOnALatticeMatchesTheBruteForce)
+{
+  std::vector<Epick::Point_3> pts;
+  for(int i = 0; i < 12; ++i)
+    for(int j = 0; j < 12; ++j)
+      for(int k = 0; k < 3; ++k)
+      {
+        pts.emplace_back(i / 8.0, j / 8.0, k / 8.0);
+        if((i + j + k) % 3 == 0)
+          pts.emplace_back(i / 8.0 + std::ldexp(1.0, -20), j / 8.0, k / 8.0);
+      }
+  std::mt19937 gen(60);
+  std::shuffle(pts.begin(), pts.end(), gen);
+  std::map<std::array<double, 3>, std::size_t> index;
+  for(std::size_t p = 0; p < pts.size(); ++p)
+    index[{pts[p].x(), pts[p].y(), pts[p].z()}] = p;
+  std::vector<std::array<std::size_t, 2>> segments;
+  for(std::size_t p = 0; p < pts.size(); ++p)
+    for(const std::array<double, 3>& step : {std::array<double, 3>{1, 0, 0}, std::array<double, 3>{0, 1, 0},
+                                             std::array<double, 3>{1, 1, 0}, std::array<double, 3>{0, 1, 1}})
+    {
+      const auto other = index.find({pts[p].x() + step[0] / 8, pts[p].y() + step[1] / 8, pts[p].z() + step[2] / 8});
+      if(other != index.end())
+        segments.push_back({p, other->second});
+    }
+  ASSERT_GT(segments.size(), 1000u);
+  for(std::size_t capacity : {8, 32})
+  {
+    const ST::Octree<Epick> tree(pts, ST::parameters::bucket_capacity(capacity));
+    for(double r : {0.0, std::ldexp(1.0, -20), 0.125})
+    {
+      std::vector<int> visits(segments.size(), 0);
+      tree.for_each_segment_neighborhood(segments, r, [&](std::size_t s, const std::vector<std::size_t>& near) {
+        ++visits[s];
+        std::vector<std::size_t> sorted = near;
+        std::sort(sorted.begin(), sorted.end());
+        ASSERT_EQ(sorted, brute_near_segment<Epick>(pts, pts[segments[s][0]], pts[segments[s][1]], r))
+          << "segment " << s << ", radius " << r << ", capacity " << capacity;
+      }, ST::Neighborhood_order::TREE);
+      for(int v : visits)
+        ASSERT_EQ(v, 1);
+    }
   }
 }
 

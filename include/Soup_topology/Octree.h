@@ -963,6 +963,67 @@ private:
     std::uint32_t position;
   };
 
+  // The shared candidates of a leaf in slabs across the longest side of their box, so that a
+  // segment tests only the candidates of the slabs its own box meets (on the exploded torus of
+  // `benchmark/exploded_torus.py`, 29 of the 76 candidates of a leaf, on average over the
+  // segments: each short segment's box is a fraction of the leaf's shared box). A candidate's
+  // slab is a monotone function of its coordinate along that side, so the slabs between those of
+  // a box's two faces hold every candidate of the box; each candidate is then tested against the
+  // box as before. The candidates are in slab order, and in their order of gathering within a slab.
+  struct Candidate_slabs
+  {
+    static constexpr std::size_t most_slabs = 16;
+    std::size_t axis = 0;
+    double low = 0, slabs_per_unit = 0;
+    std::size_t count = 1;
+    std::array<std::uint32_t, most_slabs + 1> begin{};
+    std::vector<Shared_candidate> sorted;
+
+    // the slab of coordinate `x` along the axis (non-decreasing in `x`)
+    std::size_t slab_of(double x) const
+    {
+      const double t = (x - low) * slabs_per_unit;
+      if(!(t >= 1))
+        return 0;
+      return t >= double(count - 1) ? count - 1 : static_cast<std::size_t>(t);
+    }
+
+    // `candidates`, which lie in the box [lo, hi], in slabs
+    void fill(const std::vector<Shared_candidate>& candidates, const std::array<double, 3>& lo,
+              const std::array<double, 3>& hi)
+    {
+      axis = 0;
+      for(std::size_t i = 1; i < 3; ++i)
+        if(hi[i] - lo[i] > hi[axis] - lo[axis])
+          axis = i;
+      low = lo[axis];
+      const double width = hi[axis] - lo[axis];
+      count = std::min(most_slabs, std::max<std::size_t>(candidates.size() / 4, 1));
+      slabs_per_unit = double(count) / width;
+      if(!(width > 0) || !std::isfinite(slabs_per_unit))
+      {
+        count = 1;
+        slabs_per_unit = 0;
+      }
+      begin.fill(0);
+      for(const Shared_candidate& c : candidates)
+        ++begin[slab_of(c.c[axis]) + 1];
+      for(std::size_t k = 1; k <= count; ++k)
+        begin[k] += begin[k - 1];
+      sorted.resize(candidates.size());
+      std::array<std::uint32_t, most_slabs> next;
+      std::copy(begin.begin(), begin.begin() + count, next.begin());
+      for(const Shared_candidate& c : candidates)
+        sorted[next[slab_of(c.c[axis])]++] = c;
+    }
+
+    // the candidates of the slabs that the box [lo, hi] meets, as a range of `sorted`
+    std::pair<const Shared_candidate*, const Shared_candidate*> meeting(const double* lo, const double* hi) const
+    {
+      return {sorted.data() + begin[slab_of(lo[axis])], sorted.data() + begin[slab_of(hi[axis]) + 1]};
+    }
+  };
+
   // what the segment queries of one leaf reuse for the next
   struct Segment_scratch
   {
@@ -970,6 +1031,7 @@ private:
     std::vector<Segment_query> queries;                 // the leaf's segments, prepared
     std::vector<char> shared;                           // whether a query takes the shared candidates
     std::vector<Shared_candidate> candidates;           // the points in the shared box
+    Candidate_slabs slabs;                              // those points in slabs across the box
     std::vector<std::size_t> near;                      // the answer of one segment
     std::vector<double> near_squared_distances;         // their estimates, if the callback takes them
   };
@@ -978,7 +1040,8 @@ private:
   // short beside the leaf (the box of their candidates no wider than the leaf's cell, the common
   // case on a mesh) share their candidates: the points of the union of their boxes, gathered by
   // one traversal, then tested against each segment with the decisions of `scan_near_segment()`
-  // (a point within the radius of a segment lies in that segment's box, hence among them). The
+  // (a point within the radius of a segment lies in that segment's box, hence among them), those
+  // of the slabs that the segment's box meets only (`Candidate_slabs`). The
   // others, and the segments of a leaf whose shared box holds more than `shared_candidate_limit()`
   // points (a crowd nearby, which every short segment would test), are each queried alone, from
   // the smallest box around the leaf that holds the segment grown by the radius. The answers are
@@ -1019,6 +1082,8 @@ private:
         }
       }
     const bool sharing = any_shared && gather_shared_candidates(shared_lo, shared_hi, scratch.candidates);
+    if(sharing)
+      scratch.slabs.fill(scratch.candidates, shared_lo, shared_hi);
 
     const auto smallest_box_around = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi,
                                          double grow) {
@@ -1046,12 +1111,13 @@ private:
             const Segment_query& q = scratch.queries[query];
             const Segment_3 seg = gt_.construct_segment_3_object()(points_[k], b);
             double d2 = 0;
-            for(const Shared_candidate& c : scratch.candidates)
-              if(c.c[0] >= q.box_lo[0] && c.c[0] <= q.box_hi[0] && c.c[1] >= q.box_lo[1] && c.c[1] <= q.box_hi[1] &&
-                 c.c[2] >= q.box_lo[2] && c.c[2] <= q.box_hi[2] &&
-                 is_near_segment_in_box(c.c, c.position, q, seg, r2, compare_sq, d2))
+            const auto [first, last] = scratch.slabs.meeting(q.box_lo, q.box_hi);
+            for(const Shared_candidate* c = first; c != last; ++c)
+              if(c->c[0] >= q.box_lo[0] && c->c[0] <= q.box_hi[0] && c->c[1] >= q.box_lo[1] &&
+                 c->c[1] <= q.box_hi[1] && c->c[2] >= q.box_lo[2] && c->c[2] <= q.box_hi[2] &&
+                 is_near_segment_in_box(c->c, c->position, q, seg, r2, compare_sq, d2))
               {
-                near.push_back(ids_[c.position]);
+                near.push_back(ids_[c->position]);
                 if constexpr(with_distances)
                   near_d2.push_back(d2);
               }
