@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -144,6 +145,45 @@ TEST_F(MpiRepair, JitteredSeamsGiveTheSingleProcessFile)
   const auto parts = mpi(2, folder_ + "/front.stl' '" + folder_ + "/back.stl", folder_ + "/parts.stl", options);
   ASSERT_EQ(parts.second, 0) << parts.first;
   EXPECT_EQ(file_content(folder_ + "/parts.stl"), file_content(folder_ + "/single.stl"));
+}
+
+// Under `--max-memory` every rank executes itself again before `MPI_Init`, with its large blocks
+// in huge pages (tools/memory_reuse.h), as `mpirun` started it: the job runs as before and writes
+// the single process's file and report, the tiles chosen by the same model. A soup of about 90,000
+// triangles (the elephant, subdivided twice, cut into patches with jittered seams) under 50M: in
+// tiles. With the user's own GLIBC_TUNABLES (which the program then leaves alone), the same.
+TEST_F(MpiRepair, MemoryLimitGivesTheSingleProcessFile)
+{
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  soup_test::read_data_mesh("clean/elephant.off", points, triangles);
+  soup_test::subdivide_midpoints(points, triangles);
+  soup_test::subdivide_midpoints(points, triangles);
+  const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                    CGAL::square(box.zmax() - box.zmin()));
+  auto soup = soup_test::t_junction_soup(points, triangles, 6, 1e-6 * diagonal, 3);
+  for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
+  const std::string in = folder_ + "/soup.stl";
+  ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
+  spill_ = folder_ + "/spill";
+  std::filesystem::create_directory(spill_);
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", 1e-5 * diagonal);
+  const std::string options =
+    "--tolerance " + std::string(tolerance) + " --max-memory 50M --spill-folder '" + spill_ + "'";
+  expect_same(in, options, {2});
+  // in tiles, chosen by the model (the text report: "  tiles   N")
+  const auto report = single(in, folder_ + "/again.stl", options);
+  ASSERT_EQ(report.second, 0) << report.first;
+  const std::size_t at = report.first.find("\n  tiles ");
+  ASSERT_NE(at, std::string::npos) << report.first;
+  EXPECT_GT(std::stol(report.first.substr(at + 9)), 1) << report.first;
+  ASSERT_EQ(setenv("GLIBC_TUNABLES", "glibc.malloc.perturb=0", 1), 0);
+  const auto tuned = mpi(2, in, folder_ + "/tuned.stl", options);
+  ASSERT_EQ(unsetenv("GLIBC_TUNABLES"), 0);
+  ASSERT_EQ(tuned.second, 0) << tuned.first;
+  EXPECT_EQ(file_content(folder_ + "/tuned.stl"), file_content(folder_ + "/single.stl"));
 }
 
 // An OFF file (read whole by rank 0; the other ranks never read the source), the processes'

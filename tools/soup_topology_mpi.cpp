@@ -11,9 +11,13 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv)
 {
+  // (before MPI starts: the process may be executed again, as it was launched)
+  soup_topology_tool::restart_mpi_tool_for_its_memory_limit(std::vector<std::string>(argv + 1, argv + argc));
   MPI_Init(&argc, &argv);
   Soup_topology::Mpi_tile_team ranks;
   soup_topology_tool::Tile_team_of<Soup_topology::Mpi_tile_team> team(ranks);

@@ -1081,6 +1081,16 @@ int soup_topology_tool::run_tool(std::vector<std::string> args)
   }
 }
 
+void soup_topology_tool::restart_mpi_tool_for_its_memory_limit(const std::vector<std::string>& args)
+{
+  try {
+    if(!parse_repair_arguments(args).max_memory) return;
+  } catch(const std::exception&) {
+    return;
+  }
+  tool::restart_with_huge_page_mappings(args, "soup_topology_mpi");
+}
+
 int soup_topology_tool::run_mpi_tool(const std::vector<std::string>& args, Tile_team& team)
 {
   const bool root = team.rank() == 0;

@@ -57,6 +57,12 @@ int run_tool(std::vector<std::string> args);
 /// rank that met it, for the caller to end the whole job.
 int run_mpi_tool(const std::vector<std::string>& args, Tile_team& team);
 
+/// `soup_topology_mpi ARGS...` before `MPI_Init`: under `--max-memory`, executes the program again
+/// with its large blocks in huge pages, as `soup_topology repair --max-memory` does
+/// (`memory_reuse.h`), so that every rank starts that way. Returns otherwise, and with arguments
+/// that do not parse (`run_mpi_tool()` reports them, on every rank alike).
+void restart_mpi_tool_for_its_memory_limit(const std::vector<std::string>& args);
+
 } // namespace soup_topology_tool
 
 #endif // SOUP_TOPOLOGY_TOOL_COMMANDS_H
