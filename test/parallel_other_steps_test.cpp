@@ -380,7 +380,7 @@ void expect_same_analysis(const ST::Gap_analysis& a, const ST::Gap_analysis& e)
 
 /// the nearest border element of every border vertex, as (distance bits, vertex, triangle, index).
 std::vector<std::tuple<std::uint64_t, std::size_t, std::size_t, int>>
-nearest_elements(const std::vector<ST::internal::Nearest_border_element>& nearest)
+nearest_elements(const ST::internal::Nearest_border_elements& nearest)
 {
   std::vector<std::tuple<std::uint64_t, std::size_t, std::size_t, int>> result;
   for(const ST::internal::Nearest_border_element& e : nearest)

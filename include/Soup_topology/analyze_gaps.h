@@ -380,7 +380,7 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// The lengths measured on `pts` are multiplied by `unscale` (see `scale_for_analysis()`): `a`
 /// and the distances returned are at the scale of the soup.
 template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
-std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
+Nearest_border_elements measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
                   const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
                   Gap_analysis& a, double unscale = 1)
 {
@@ -403,10 +403,11 @@ std::vector<Nearest_border_element> measure_gaps(const std::vector<typename Geom
                    border_lengths.end());
   a.search_radius = border_lengths[border_lengths.size() / 2];
   if(a.border_features.count > 0) a.search_radius = std::max(a.search_radius, a.border_features.minimum);
-  std::vector<Nearest_border_element> nearest =
+  Nearest_border_elements nearest =
     nearest_border_elements<ConcurrencyTag>(pts, tables, border, a.search_radius / unscale, gt);
   if(unscale != 1)
     for(Nearest_border_element& e : nearest) e.distance *= unscale;
+  a.gaps.reserve(a.gaps.size() + nearest.size());
   for(const Nearest_border_element& e : nearest) {
     if(std::isfinite(e.distance)) a.gaps.push_back(e.distance);
     else ++a.gaps_beyond_search_radius;
@@ -746,7 +747,7 @@ std::vector<Part_gap_analysis> analyze_gaps_per_part(const PointRange& points, c
   Gap_analysis global;
   const std::vector<std::size_t> border = internal::border_vertices(tables);
   internal::measure_feature_sizes<ConcurrencyTag>(pts, tris, tables, gt, global, unscale);
-  std::vector<internal::Nearest_border_element> nearest;
+  internal::Nearest_border_elements nearest;
   if(!border.empty()) nearest = internal::measure_gaps<ConcurrencyTag>(pts, tris, tables, border, gt, global, unscale);
   // A gap below the bounds of the pieces on both sides joins them (decided on the pieces, so
   // that the order of the joins does not matter).

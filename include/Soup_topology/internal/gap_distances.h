@@ -12,6 +12,7 @@
 #include <Soup_topology/Invalid_input.h>
 #include <Soup_topology/Octree.h>
 #include <Soup_topology/internal/parallel.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/number_utils.h>
 #include <CGAL/property_map.h>
@@ -50,6 +51,11 @@ struct Nearest_border_element
   Adjacency_tables::Edge edge{Adjacency_tables::border_edge, -1}; ///< the nearest border edge, if nearer than any vertex
 };
 
+/// the nearest border elements of the border vertices, one each (in huge pages when large: a
+/// soup whose every vertex is a border vertex has 32 bytes of them a corner, which 4 KiB pages
+/// would fault in one by one on every call)
+using Nearest_border_elements = Uninitialized_vector<Nearest_border_element>;
+
 /// `true` if `v` and `w` are corners of one triangle of `tables`.
 inline bool share_a_triangle(const Adjacency_tables& tables, std::size_t v, std::size_t w)
 {
@@ -71,6 +77,7 @@ inline std::vector<std::size_t> border_vertices(const Adjacency_tables& tables)
         on_border[tables.vertex(static_cast<Adjacency_tables::size_type>(t), (i + 1) % 3)] = 1;
       }
   std::vector<std::size_t> out;
+  out.reserve(static_cast<std::size_t>(std::count(on_border.begin(), on_border.end(), char(1))));
   for(std::size_t v = 0; v < on_border.size(); ++v)
     if(on_border[v]) out.push_back(v);
   return out;
@@ -139,20 +146,20 @@ public:
   static constexpr std::size_t border_bucket_capacity = 32;
 
   /// the answers so far, by position
-  std::vector<Nearest_border_element>& nearest() { return nearest_; }
+  Nearest_border_elements& nearest() { return nearest_; }
 
   /// the answers in the order of `border`; the search is over (its tree and its lists are freed
   /// first, so that the copy does not raise the peak)
-  std::vector<Nearest_border_element> nearest_in_border_order()
+  Nearest_border_elements nearest_in_border_order()
   {
     tree_.reset();
     Uninitialized_vector<Adjacency_tables::Edge>().swap(border_edges_);
     Uninitialized_vector<std::array<Adjacency_tables::size_type, 2>>().swap(border_edge_ends_);
     Uninitialized_vector<Adjacency_tables::size_type>().swap(border_edge_apex_);
     Uninitialized_vector<Adjacency_tables::size_type>().swap(vertex_at_);
-    std::vector<Nearest_border_element> out(nearest_.size());
+    Nearest_border_elements out(nearest_.size());
     for(std::size_t p = 0; p < nearest_.size(); ++p) out[border_index_at_[p]] = nearest_[p];
-    std::vector<Nearest_border_element>().swap(nearest_);
+    Nearest_border_elements().swap(nearest_);
     return out;
   }
 
@@ -423,7 +430,7 @@ private:
   std::optional<Tree> tree_;
   Uninitialized_vector<std::uint32_t> border_index_at_;         // position -> index into `border`
   Uninitialized_vector<Adjacency_tables::size_type> vertex_at_; // position -> vertex
-  std::vector<Nearest_border_element> nearest_;                 // by position
+  Nearest_border_elements nearest_;                             // by position
   // (`Uninitialized_vector`s: their large blocks come in huge pages)
   // (the border edges in the order of `list_border_edges()`)
   Uninitialized_vector<Adjacency_tables::Edge> border_edges_;                          // the edges
@@ -458,7 +465,7 @@ constexpr double first_gap_pass_fraction = 1.0 / 32;
 /// costs the count only. Whether the budget is exceeded depends on the total only, not on the
 /// order of the counts.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Geom_traits>
-std::vector<Nearest_border_element> nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
+Nearest_border_elements nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
                                                             const Adjacency_tables& tables,
                                                             const std::vector<std::size_t>& border,
                                                             double radius, const Geom_traits& gt)
