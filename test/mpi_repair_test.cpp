@@ -112,6 +112,28 @@ protected:
       ADD_FAILURE() << entry.path() << " was left";
   }
 
+  // The elephant, subdivided 1-to-4 `subdivisions` times, cut into patches whose seams are
+  // jittered by 1e-6 of its diagonal (`seed`), the points as an STL holds them; `tolerance` is
+  // 1e-5 of the diagonal, written in full. The spill folder is made.
+  soup_test::T_junction_soup<Point> elephant_seams(int subdivisions, unsigned seed, std::string& tolerance)
+  {
+    std::vector<Point> points;
+    std::vector<std::array<std::size_t, 3>> triangles;
+    soup_test::read_data_mesh("clean/elephant.off", points, triangles);
+    for(int i = 0; i < subdivisions; ++i) soup_test::subdivide_midpoints(points, triangles);
+    const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
+    const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                      CGAL::square(box.zmax() - box.zmin()));
+    auto soup = soup_test::t_junction_soup(points, triangles, 6, 1e-6 * diagonal, seed);
+    for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", 1e-5 * diagonal);
+    tolerance = text;
+    spill_ = folder_ + "/spill";
+    std::filesystem::create_directory(spill_);
+    return soup;
+  }
+
   std::string folder_, spill_;
 };
 
@@ -119,22 +141,11 @@ protected:
 // rank 0's plan and spill), in 8 tiles.
 TEST_F(MpiRepair, JitteredSeamsGiveTheSingleProcessFile)
 {
-  std::vector<Point> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  soup_test::read_data_mesh("clean/elephant.off", points, triangles);
-  const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
-  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                    CGAL::square(box.zmax() - box.zmin()));
-  auto soup = soup_test::t_junction_soup(points, triangles, 6, 1e-6 * diagonal, 5);
-  // The points as an STL holds them.
-  for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
+  std::string tolerance;
+  const auto soup = elephant_seams(0, 5, tolerance);
   const std::string in = folder_ + "/seams.stl";
   ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
-  spill_ = folder_ + "/spill";
-  std::filesystem::create_directory(spill_);
-  char tolerance[32];
-  std::snprintf(tolerance, sizeof tolerance, "%.17g", 1e-5 * diagonal);
-  const std::string options = "--tolerance " + std::string(tolerance) + " --tiles 8 --spill-folder '" + spill_ + "'";
+  const std::string options = "--tolerance " + tolerance + " --tiles 8 --spill-folder '" + spill_ + "'";
   expect_same(in, options, {1, 2, 4});
   // The same soup as an assembly of two files.
   const std::size_t half = soup.triangles.size() / 2;
@@ -154,24 +165,11 @@ TEST_F(MpiRepair, JitteredSeamsGiveTheSingleProcessFile)
 // tiles. With the user's own GLIBC_TUNABLES (which the program then leaves alone), the same.
 TEST_F(MpiRepair, MemoryLimitGivesTheSingleProcessFile)
 {
-  std::vector<Point> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  soup_test::read_data_mesh("clean/elephant.off", points, triangles);
-  soup_test::subdivide_midpoints(points, triangles);
-  soup_test::subdivide_midpoints(points, triangles);
-  const CGAL::Bbox_3 box = CGAL::bbox_3(points.begin(), points.end());
-  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                    CGAL::square(box.zmax() - box.zmin()));
-  auto soup = soup_test::t_junction_soup(points, triangles, 6, 1e-6 * diagonal, 3);
-  for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
+  std::string tolerance;
+  const auto soup = elephant_seams(2, 3, tolerance);
   const std::string in = folder_ + "/soup.stl";
   ST::IO::write_triangle_soup(in, soup.points, soup.triangles);
-  spill_ = folder_ + "/spill";
-  std::filesystem::create_directory(spill_);
-  char tolerance[32];
-  std::snprintf(tolerance, sizeof tolerance, "%.17g", 1e-5 * diagonal);
-  const std::string options =
-    "--tolerance " + std::string(tolerance) + " --max-memory 50M --spill-folder '" + spill_ + "'";
+  const std::string options = "--tolerance " + tolerance + " --max-memory 50M --spill-folder '" + spill_ + "'";
   expect_same(in, options, {2});
   // in tiles, chosen by the model (the text report: "  tiles   N")
   const auto report = single(in, folder_ + "/again.stl", options);
