@@ -381,8 +381,8 @@ void measure_feature_sizes(const std::vector<typename Geom_traits::Point_3>& pts
 /// and the distances returned are at the scale of the soup.
 template <class ConcurrencyTag, class Geom_traits, class TriangleRange>
 Nearest_border_elements measure_gaps(const std::vector<typename Geom_traits::Point_3>& pts, const TriangleRange& tris,
-                  const Adjacency_tables& tables, const std::vector<std::size_t>& border, const Geom_traits& gt,
-                  Gap_analysis& a, double unscale = 1)
+                                     const Adjacency_tables& tables, const std::vector<std::size_t>& border,
+                                     const Geom_traits& gt, Gap_analysis& a, double unscale = 1)
 {
   using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
   std::vector<std::vector<double>> lengths(number_of_blocks(tris.size()));

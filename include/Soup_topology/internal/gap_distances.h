@@ -466,9 +466,9 @@ constexpr double first_gap_pass_fraction = 1.0 / 32;
 /// order of the counts.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class Geom_traits>
 Nearest_border_elements nearest_border_elements(const std::vector<typename Geom_traits::Point_3>& points,
-                                                            const Adjacency_tables& tables,
-                                                            const std::vector<std::size_t>& border,
-                                                            double radius, const Geom_traits& gt)
+                                                const Adjacency_tables& tables,
+                                                const std::vector<std::size_t>& border,
+                                                double radius, const Geom_traits& gt)
 {
   if(border.empty()) return {};
   using Tag = Geometric_concurrency<ConcurrencyTag, Geom_traits>;
