@@ -162,7 +162,8 @@ TEST_F(MpiRepair, JitteredSeamsGiveTheSingleProcessFile)
 // in huge pages (tools/memory_reuse.h), as `mpirun` started it: the job runs as before and writes
 // the single process's file and report, the tiles chosen by the same model. A soup of about 90,000
 // triangles (the elephant, subdivided twice, cut into patches with jittered seams) under 50M: in
-// tiles. With the user's own GLIBC_TUNABLES (which the program then leaves alone), the same.
+// tiles. With the user's own GLIBC_TUNABLES (which the program then leaves alone), the same. Under
+// 2G: in memory, on rank 0, as the single process.
 TEST_F(MpiRepair, MemoryLimitGivesTheSingleProcessFile)
 {
   std::string tolerance;
@@ -182,6 +183,16 @@ TEST_F(MpiRepair, MemoryLimitGivesTheSingleProcessFile)
   ASSERT_EQ(unsetenv("GLIBC_TUNABLES"), 0);
   ASSERT_EQ(tuned.second, 0) << tuned.first;
   EXPECT_EQ(file_content(folder_ + "/tuned.stl"), file_content(folder_ + "/single.stl"));
+  // Under a limit that the repair in memory fits: rank 0 repairs in memory, as the single process
+  // does (the tiles' canonical order would give another file), the same report.
+  const std::string roomy = "--tolerance " + tolerance + " --max-memory 2G";
+  const auto whole = single(in, folder_ + "/whole.stl", roomy);
+  ASSERT_EQ(whole.second, 0) << whole.first;
+  EXPECT_EQ(whole.first.find("\n  tiles "), std::string::npos) << whole.first;
+  const auto job = mpi(2, in, folder_ + "/job.stl", roomy);
+  ASSERT_EQ(job.second, 0) << job.first;
+  EXPECT_EQ(file_content(folder_ + "/job.stl"), file_content(folder_ + "/whole.stl"));
+  EXPECT_EQ(report_without_names(job.first), report_without_names(whole.first));
 }
 
 // An OFF file (read whole by rank 0; the other ranks never read the source), the processes'

@@ -937,6 +937,21 @@ int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* 
   return written.exit_code(o);
 }
 
+int repair_in_memory(const Repair_options& o, Read_soup& soup, bool soup_read,
+                     const std::optional<Tiled_memory_model>& model);
+
+// --max-memory: the model of the input `o.in`, whether it is repaired in memory or in tiles (a
+// binary STL is not read for that: its header gives the number of triangles; another file is
+// read into `soup`, and `soup_read` set).
+Tiled_memory_model memory_model_of_input(const Repair_options& o, Read_soup& soup, bool& soup_read)
+{
+  if(is_binary_stl(o.in)) return Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
+  soup.read = ST::IO::read_triangle_soup<Concurrency>(o.in, soup.points, soup.triangles);
+  soup_read = true;
+  return Tiled_memory_model{double(soup.triangles.size()),
+                            double(soup.points.capacity() * sizeof(Point) + soup.triangles.capacity() * sizeof(Triangle))};
+}
+
 int run_repair(const std::vector<std::string>& args)
 {
   Repair_options o = parse_repair_arguments(args);
@@ -959,23 +974,22 @@ int run_repair(const std::vector<std::string>& args)
   ST::Single_process_team process;
   tool::Tile_team_of<ST::Single_process_team> alone(process);
   if(o.tiles > 0 || !o.more_inputs.empty()) return run_tiled_repair(o, alone);
-  // --max-memory: in tiles when the repair in memory would not fit (a binary STL is not read
-  // for that: its header gives the number of triangles).
   Read_soup soup;
   bool soup_read = false;
   std::optional<Tiled_memory_model> model;
   if(o.max_memory) {
-    if(is_binary_stl(o.in)) {
-      model = Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
-    } else {
-      soup.read = ST::IO::read_triangle_soup<Concurrency>(o.in, soup.points, soup.triangles);
-      soup_read = true;
-      model = Tiled_memory_model{double(soup.triangles.size()),
-                                 double(soup.points.capacity() * sizeof(Point) + soup.triangles.capacity() * sizeof(Triangle))};
-    }
+    model = memory_model_of_input(o, soup, soup_read);
     if(choose_tiles(*model, *o.max_memory) > 1) return run_tiled_repair(o, alone, soup_read ? &soup : nullptr);
   }
+  return repair_in_memory(o, soup, soup_read, model);
+}
 
+// The repair in memory of `repair` (and of `soup_topology_mpi --max-memory` on rank 0 when the
+// soup fits): `soup` is the input if `soup_read`, else it is read here; `model` is the memory
+// model of `--max-memory`, reported.
+int repair_in_memory(const Repair_options& o, Read_soup& soup, bool soup_read,
+                     const std::optional<Tiled_memory_model>& model)
+{
   std::vector<Point> points;
   std::vector<Triangle> triangles;
   ST::IO::Soup_read_report read;
@@ -1033,7 +1047,8 @@ const char* mpi_usage_text =
   "      DIR (default: the temporary directory; on several machines, a folder they share), every\n"
   "      rank repairs its share, rank 0 merges, orients and writes OUT and prints the report.\n"
   "      The output is the same for every K and N. Default N: 4 K. --max-memory SIZE chooses N\n"
-  "      for rank 0's memory (the others hold one tile's region at a time).\n"
+  "      for rank 0's memory (the others hold one tile's region at a time); one input that fits\n"
+  "      is repaired in memory by rank 0, as 'soup_topology repair --max-memory SIZE' does.\n"
   "exit codes: as soup_topology repair\n";
 
 // soup_topology_mpi: the options of `repair --tiles N`, checked by every rank alike.
@@ -1129,5 +1144,20 @@ int soup_topology_tool::run_mpi_tool(const std::vector<std::string>& args, Tile_
   }
   tool::install_signal_handlers();
   const Thread_limit limit(o.threads);
+  // --max-memory on one input: a soup whose repair in memory fits is repaired in memory by rank 0,
+  // as `soup_topology repair --max-memory` does (the same file); the other ranks have nothing to do.
+  if(o.max_memory && o.more_inputs.empty()) {
+    Read_soup soup;
+    bool soup_read = false;
+    std::optional<Tiled_memory_model> model;
+    std::vector<char> in_memory(1, 0);
+    if(root) {
+      model = memory_model_of_input(o, soup, soup_read);
+      in_memory[0] = choose_tiles(*model, *o.max_memory) <= 1;
+    }
+    team.broadcast(in_memory);
+    if(in_memory[0]) return root ? repair_in_memory(o, soup, soup_read, model) : 0;
+    return run_tiled_repair(o, team, soup_read ? &soup : nullptr);
+  }
   return run_tiled_repair(o, team);
 }
