@@ -948,8 +948,8 @@ Tiled_memory_model memory_model_of_input(const Repair_options& o, Read_soup& sou
   if(is_binary_stl(o.in)) return Tiled_memory_model{double(binary_stl_triangles(o.in)), 0.0};
   soup.read = ST::IO::read_triangle_soup<Concurrency>(o.in, soup.points, soup.triangles);
   soup_read = true;
-  return Tiled_memory_model{double(soup.triangles.size()),
-                            double(soup.points.capacity() * sizeof(Point) + soup.triangles.capacity() * sizeof(Triangle))};
+  const std::size_t soup_bytes = soup.points.capacity() * sizeof(Point) + soup.triangles.capacity() * sizeof(Triangle);
+  return Tiled_memory_model{double(soup.triangles.size()), double(soup_bytes)};
 }
 
 int run_repair(const std::vector<std::string>& args)
