@@ -40,6 +40,42 @@ struct Patch_orientation_rules
   bool nest_closed_patches = true;
 };
 
+/// twice the signed solid angle of the triangle `c[0]`, `c[1]`, `c[2]` (its corners relative to
+/// the point it is seen from): the term of a generalised winding number.
+inline double twice_solid_angle(const std::array<double, 3> (&c)[3])
+{
+  const auto dot = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  };
+  const double la = std::sqrt(dot(c[0], c[0])), lb = std::sqrt(dot(c[1], c[1])), lc = std::sqrt(dot(c[2], c[2]));
+  const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) - c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
+                     c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
+  const double den = la * lb * lc + dot(c[0], c[1]) * lc + dot(c[0], c[2]) * lb + dot(c[1], c[2]) * la;
+  return 2 * std::atan2(det, den);
+}
+
+/// What `Soup_orienter` tells of its decisions when asked (`orient_triangle_soup_in_parts()`
+/// orients a soup one part at a time with it and puts the parts together).
+struct Orientation_decisions
+{
+  /// a closed patch: its box and its sample as the nesting test takes them, how its orientation
+  /// was chosen, and its triangles (indices after the repeated ones are left out) in the order of
+  /// its traversal, the order in which the nesting test sums its winding number
+  struct Closed_patch
+  {
+    Box_bounds box;
+    std::array<double, 3> sample;
+    bool by_volume = false;  ///< turned by its signed volume and nesting depth (not kept as read)
+    bool turned = false;     ///< turned as a whole (after its consistent orientation)
+    std::size_t flipped = 0; ///< its triangles written reversed
+    std::vector<Adjacency_tables::size_type> triangles;
+  };
+  bool with_triangles = true;           ///< whether the closed patches are told with their triangles
+  std::vector<char> dropped;            ///< for every triangle given: left out as a repeat (empty: none was)
+  std::vector<std::size_t> copied_from; ///< for every point appended: the point it copies
+  std::vector<Closed_patch> closed;     ///< the closed patches, in increasing order
+};
+
 /// Orients an indexed triangle soup in place (see `orient_triangle_soup()`).
 ///
 /// A *patch* is a set of triangles connected through edges shared by exactly two triangles.
@@ -72,8 +108,9 @@ public:
   /// changed. Tables of its own are built only when none are given, or when repeated triangles
   /// have to be left out.
   Soup_orienter(PointRange& points, TriangleRange& triangles, const Patch_orientation_rules& rules, const Kernel& kernel,
-                const Adjacency_tables* tables = nullptr)
-    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size()), tables_(tables)
+                const Adjacency_tables* tables = nullptr, Orientation_decisions* decisions = nullptr)
+    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size()), tables_(tables),
+      decisions_(decisions)
   {
     if(tables_ && (tables_->number_of_triangles() != triangles_.size() || tables_->number_of_vertices() != points_.size()))
       throw Invalid_input("orientation: the adjacency tables given are not those of the soup");
@@ -95,6 +132,7 @@ public:
     // peak of the orientation is then the tables, not the tables and what comes after).
     release_own_tables();
     choose_patch_orientations<ConcurrencyTag>();
+    if(decisions_ != nullptr) tell_closed_patches();
     write_back<ConcurrencyTag>();
     return counts_;
   }
@@ -311,6 +349,7 @@ private:
       }
       g = e;
     }
+    if(decisions_ != nullptr) decisions_->dropped = drop;
     std::size_t kept = 0;
     for(std::size_t t = 0; t < n; ++t)
       if(!drop[t]) {
@@ -455,6 +494,7 @@ private:
         const Point copy = points_[v];
         new_index[rank_of_fan[r]] = points_.size();
         points_.push_back(copy);
+        if(decisions_ != nullptr) decisions_->copied_from.push_back(v);
         ++counts_.duplicated_points;
       }
       for(std::size_t j = 0; j < around.size(); ++j)
@@ -602,16 +642,35 @@ private:
         c[i] = {x[0] - q[0], x[1] - q[1], x[2] - q[2]};
       }
       if(reversed_[t]) std::swap(c[1], c[2]);
-      auto dot = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
-        return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-      };
-      const double la = std::sqrt(dot(c[0], c[0])), lb = std::sqrt(dot(c[1], c[1])), lc = std::sqrt(dot(c[2], c[2]));
-      const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) - c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
-                         c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
-      const double den = la * lb * lc + dot(c[0], c[1]) * lc + dot(c[0], c[2]) * lb + dot(c[1], c[2]) * la;
-      sum += 2 * std::atan2(det, den);
+      sum += twice_solid_angle(c);
     }
     return sum / (4 * 3.14159265358979323846);
+  }
+
+  // The box of patch p and its sample: the centroid of its largest triangle (the first in the
+  // order of its traversal), corners as given.
+  void box_and_sample(size_type p, Box_bounds& box, std::array<double, 3>& sample) const
+  {
+    box = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    double largest = -1;
+    for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
+      const size_type t = patch_order_[k];
+      const std::array<double, 3>& a = xyz(vertex(t, 0));
+      const std::array<double, 3>& b = xyz(vertex(t, 1));
+      const std::array<double, 3>& d = xyz(vertex(t, 2));
+      for(const std::array<double, 3>* x : {&a, &b, &d})
+        for(std::size_t i = 0; i < 3; ++i) {
+          box[i] = std::min(box[i], (*x)[i]);
+          box[i + 3] = std::max(box[i + 3], (*x)[i]);
+        }
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+      const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      const double area = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+      if(area > largest) {
+        largest = area;
+        sample = {(a[0] + b[0] + d[0]) / 3, (a[1] + b[1] + d[1]) / 3, (a[2] + b[2] + d[2]) / 3};
+      }
+    }
   }
 
   // For every closed patch, the number of other closed patches that enclose it, tested at the
@@ -623,29 +682,8 @@ private:
     const std::size_t m = closed_patches.size();
     std::vector<std::array<double, 6>> box(m);
     std::vector<std::array<double, 3>> sample(m);
-    for_each_patch<ConcurrencyTag>(closed_patches, [&](std::size_t c) {
-      const size_type p = closed_patches[c];
-      box[c] = {HUGE_VAL, HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-      double largest = -1;
-      for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
-        const size_type t = patch_order_[k];
-        const std::array<double, 3>& a = xyz(vertex(t, 0));
-        const std::array<double, 3>& b = xyz(vertex(t, 1));
-        const std::array<double, 3>& d = xyz(vertex(t, 2));
-        for(const std::array<double, 3>* x : {&a, &b, &d})
-          for(std::size_t i = 0; i < 3; ++i) {
-            box[c][i] = std::min(box[c][i], (*x)[i]);
-            box[c][i + 3] = std::max(box[c][i + 3], (*x)[i]);
-          }
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-        const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        const double area = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if(area > largest) {
-          largest = area;
-          sample[c] = {(a[0] + b[0] + d[0]) / 3, (a[1] + b[1] + d[1]) / 3, (a[2] + b[2] + d[2]) / 3};
-        }
-      }
-    });
+    for_each_patch<ConcurrencyTag>(closed_patches,
+                                   [&](std::size_t c) { box_and_sample(closed_patches[c], box[c], sample[c]); });
     // Only a closed patch whose box holds the other's box can enclose it: those pairs alone are
     // listed (`for_each_box_inside_another()`), not every pair (a soup can hold many thousands of
     // closed pieces) nor every pair of overlapping boxes (k closed pieces around one edge all
@@ -707,6 +745,25 @@ private:
     });
   }
 
+  // The closed patches and how they were turned, for `decisions_` (before `write_back()`: the
+  // corners are still those given).
+  void tell_closed_patches()
+  {
+    for(size_type p = 0; p + 1 < patch_begin_.size(); ++p) {
+      if(!closed_[p]) continue;
+      Orientation_decisions::Closed_patch c;
+      box_and_sample(p, c.box, c.sample);
+      c.by_volume = !(rules_.keep_consistent_input && is_consistent_as_read(p));
+      c.turned = turn_[p] != 0;
+      for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k)
+        c.flipped += ((reversed_[patch_order_[k]] != 0) != c.turned) ? 1u : 0u;
+      if(decisions_->with_triangles)
+        c.triangles.assign(patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]),
+                           patch_order_.begin() + std::ptrdiff_t(patch_begin_[p + 1]));
+      decisions_->closed.push_back(std::move(c));
+    }
+  }
+
   // --- Step 5: writing back --------------------------------------------------------------------
 
   template <class ConcurrencyTag>
@@ -733,6 +790,7 @@ private:
   std::size_t input_points_;
   Counts counts_;
   const Adjacency_tables* tables_; // the tables given, or own_tables_
+  Orientation_decisions* decisions_; // where the decisions are told, if asked
   Adjacency_tables own_tables_;
   std::vector<size_type> rank_;
   std::vector<char> reversed_, cut_, non_orientable_, closed_, turn_;
