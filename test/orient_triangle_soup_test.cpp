@@ -7,6 +7,8 @@
 
 #include <Soup_topology/IO/read_triangle_soup.h>
 #include <Soup_topology/orient_triangle_soup.h>
+#include <Soup_topology/internal/orient_soup_in_parts.h>
+#include <Soup_topology/soup_statistics.h>
 #include <Soup_topology/parameters.h>
 #include <Soup_topology/reconstruct_topology.h>
 #include <Soup_topology/snap_vertices.h>
@@ -829,6 +831,97 @@ TEST(OrientTriangleSoup, WithThePipelinesTablesAsWithoutThem)
   std::vector<Triangle> t = generated.triangles;
   const ST::Adjacency_tables other(std::vector<Triangle>(t.begin(), t.end() - 1), p.size());
   EXPECT_THROW(ST::internal::orient_triangle_soup_with_tables(p, t, &other), ST::Invalid_input);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The orientation in parts (the output of a tiled repair under a memory limit)
+
+// Closed shells nested across components: a cube holding a cube holding a cube, a cube inside
+// out beside them holding another, two cubes with a face in common (their samples on each other's
+// surface), each shell its own component, and the hostile soup's pieces.
+Soup nested_shells()
+{
+  Soup s = hostile_soup();
+  s.add_cube(100, 0, 0, 10);
+  s.add_cube(102, 2, 2, 6);
+  s.add_cube(104, 4, 4, 2, true);
+  s.add_cube(120, 0, 0, 10, true);
+  s.add_cube(121, 1, 1, 8, false, true);
+  s.add_cube(140, 0, 0, 4);
+  s.add_cube(140, 0, 0, 4, true); // the same cube again, inside out: every triangle repeated
+  s.add_cube(160, 0, 0, 4);
+  s.add_cube(160, 1, 1, 2);       // a face in the plane of the outer cube's face
+  return s;
+}
+
+TEST(OrientTriangleSoup, InPartsAsWhole)
+{
+  std::vector<std::pair<std::string, Soup>> soups = pinned_soups();
+  soups.emplace_back("hostile", hostile_soup());
+  soups.emplace_back("nested shells", nested_shells());
+  {
+    Soup s = nested_shells();
+    s.triangles = scrambled(s.triangles, 3);
+    soups.emplace_back("nested shells, scrambled", s);
+    // the points renumbered at random: the vertices separated in different parts interleave
+    std::vector<std::size_t> new_index(s.points.size());
+    std::iota(new_index.begin(), new_index.end(), std::size_t(0));
+    std::mt19937 shuffle(11);
+    std::shuffle(new_index.begin(), new_index.end(), shuffle);
+    Soup r;
+    r.points.resize(s.points.size());
+    for(std::size_t v = 0; v < s.points.size(); ++v) r.points[new_index[v]] = s.points[v];
+    for(const Triangle& t : s.triangles) r.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+    soups.emplace_back("nested shells, scrambled, points renumbered", r);
+  }
+  const ST::Orientation_policy policies[] = {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT,
+                                             ST::Orientation_policy::OUTWARD};
+  std::size_t turned_across_parts = 0;
+  for(const auto& [name, soup] : soups)
+    for(const ST::Orientation_policy policy : policies) {
+      const auto np = ST::parameters::orientation_policy(policy);
+      std::vector<Point> p = soup.points;
+      std::vector<Triangle> t = soup.triangles;
+      const ST::Orientation_report whole = ST::orient_triangle_soup(p, t, np);
+      const ST::Soup_statistics measured = ST::compute_statistics(p, ST::Adjacency_tables(t, p.size()));
+      for(const std::size_t part_triangles : {std::size_t(1), std::size_t(20), std::size_t(5000),
+                                              std::numeric_limits<std::size_t>::max()}) {
+        SCOPED_TRACE(name + ", policy " + std::to_string(int(policy)) + ", parts of " + std::to_string(part_triangles));
+        std::vector<Point> q = soup.points;
+        std::vector<Triangle> u = soup.triangles;
+        const ST::internal::Oriented_in_parts r = ST::internal::orient_triangle_soup_in_parts(q, u, part_triangles, np);
+        EXPECT_EQ(u, t);
+        ASSERT_EQ(q.size(), p.size());
+        EXPECT_TRUE(std::equal(q.begin(), q.end(), p.begin()));
+        EXPECT_EQ(r.report.duplicate_triangles, whole.duplicate_triangles);
+        EXPECT_EQ(r.report.orientation_flips, whole.orientation_flips);
+        EXPECT_EQ(r.report.duplicated_points, whole.duplicated_points);
+        EXPECT_EQ(r.statistics.vertices, measured.vertices);
+        EXPECT_EQ(r.statistics.triangles, measured.triangles);
+        EXPECT_EQ(r.statistics.border_edges, measured.border_edges);
+        EXPECT_EQ(r.statistics.non_manifold_edges, measured.non_manifold_edges);
+        EXPECT_EQ(r.statistics.non_manifold_vertices, measured.non_manifold_vertices);
+        EXPECT_EQ(r.statistics.inconsistent_edges, measured.inconsistent_edges);
+        EXPECT_EQ(r.statistics.components, measured.components);
+        EXPECT_EQ(r.statistics.zero_area_triangles, measured.zero_area_triangles);
+        EXPECT_EQ(r.statistics.closed, measured.closed);
+        if(part_triangles == std::numeric_limits<std::size_t>::max()) {
+          EXPECT_EQ(r.parts, 1u);
+        }
+        if(part_triangles == 1 && name.rfind("nested shells", 0) == 0) {
+          EXPECT_GT(r.parts, 10u);
+          turned_across_parts += r.turned_across_parts;
+        }
+        // on threads, the same
+        std::vector<Point> pp = soup.points;
+        std::vector<Triangle> tt = soup.triangles;
+        const auto r2 = ST::internal::orient_triangle_soup_in_parts<CGAL::Parallel_if_available_tag>(pp, tt, part_triangles, np);
+        EXPECT_EQ(tt, t);
+        EXPECT_EQ(r2.report.orientation_flips, whole.orientation_flips);
+      }
+    }
+  // the inner shells turned by shells of other parts (a test that reaches that step)
+  EXPECT_GT(turned_across_parts, 0u);
 }
 
 // ---------------------------------------------------------------------------------------------
