@@ -777,6 +777,55 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
   std::filesystem::remove_all(folder);
 }
 
+// Under `--max-memory`, an output whose orientation as a whole would not fit is oriented one part
+// (whole components) at a time: the file of `--tiles N`, byte for byte. Four copies of the soup
+// of ToolChoosesTheTilesForAMemoryLimit side by side (about 360,000 triangles): under 40M the
+// whole output needs about 48 MB, its parts of one copy about 36 MB.
+TEST(TiledReconstruction, ToolOrientsTheOutputInPartsUnderAMemoryLimit)
+{
+  Soup mesh;
+  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  const double d = diagonal(mesh.points);
+  const auto copy = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
+  Soup assembly;
+  for(int k = 0; k < 4; ++k) {
+    const std::size_t first = assembly.points.size();
+    for(const Point& p : copy.points)
+      assembly.points.push_back(soup_test::rounded_to_float(Point(p.x() + 2 * k * d, p.y(), p.z())));
+    for(const auto& t : copy.triangles) assembly.triangles.push_back({first + t[0], first + t[1], first + t[2]});
+  }
+  const std::string folder = soup_test::temporary_folder("tiled_output_parts");
+  const std::string in = folder + "/assembly.stl";
+  ST::IO::write_triangle_soup(in, assembly.points, assembly.triangles);
+  char tolerance[32];
+  std::snprintf(tolerance, sizeof tolerance, "%.17g", 1e-5 * d);
+  const auto repair = [&](const std::string& options, const std::string& out) {
+    return soup_test::run_command("'" + std::string(SOUP_TOPOLOGY_CLI) + "' repair '" + in + "' -o '" + out +
+                                  "' --json --tolerance " + tolerance + " " + options + " 2>&1");
+  };
+  const auto limited = repair("--max-memory 40M", folder + "/limited.stl");
+  ASSERT_EQ(limited.second, 0) << limited.first;
+  const long long tiles = soup_test::json_integer(limited.first, "tiles");
+  EXPECT_GT(tiles, 1) << limited.first;
+  EXPECT_EQ(soup_test::json_integer(limited.first, "output_parts"), 4) << limited.first;
+  EXPECT_EQ(soup_test::json_integer(limited.first, "components"), 4) << limited.first;
+  EXPECT_LE(soup_test::json_integer(limited.first, "modelled_peak"), soup_test::json_integer(limited.first, "max_memory"));
+  EXPECT_EQ(limited.first.find("warning"), std::string::npos) << limited.first;
+  const auto forced = repair("--tiles " + std::to_string(tiles), folder + "/forced.stl");
+  ASSERT_EQ(forced.second, 0) << forced.first;
+  EXPECT_EQ(soup_test::json_integer(forced.first, "output_parts"), -1) << "oriented whole: " << forced.first;
+  std::ifstream a(folder + "/limited.stl", std::ios::binary), b(folder + "/forced.stl", std::ios::binary);
+  const std::string limited_bytes((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()),
+    forced_bytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  EXPECT_GT(limited_bytes.size(), 84u + 50u * 300000u);
+  EXPECT_TRUE(limited_bytes == forced_bytes);
+  for(const char* key : {"orientation_flips", "duplicated_points", "border_edges", "non_manifold_vertices", "output_vertices"})
+    EXPECT_EQ(soup_test::json_integer(limited.first, key), soup_test::json_integer(forced.first, key)) << key;
+  std::filesystem::remove_all(folder);
+}
+
 // Under `--max-memory`, a soup the tiles cannot decide (here one at 2^-900, in another unit) is
 // repaired as one tile: the tool writes the result of the repair in memory and says on standard
 // error that the limit was not allowed for.

@@ -23,6 +23,7 @@
 #include <Soup_topology/tiled_reconstruct_topology.h>
 #include <Soup_topology/IO/write_triangle_soup.h>
 #include <Soup_topology/orient_triangle_soup.h>
+#include <Soup_topology/internal/orient_soup_in_parts.h>
 #include <Soup_topology/soup_statistics.h>
 
 #include "gaps_command.h"
@@ -126,8 +127,10 @@ const char* usage_text =
   "      a new folder, removed at the end; default: the temporary directory).\n"
   "      --max-memory SIZE (e.g. 500M, 4G; with --tolerance T) keeps the peak resident memory\n"
   "      under SIZE by a model of it: in memory when the soup fits, else in the fewest tiles\n"
-  "      (a power of two) that fit; refused (exit 2) when SIZE is below what the merge and the\n"
-  "      orientation of the output need. The report gives the model's peak.\n"
+  "      (a power of two) that fit; the output is oriented one part (whole components) at a\n"
+  "      time when it does not fit whole (the same file); refused (exit 2) when SIZE is below\n"
+  "      what the merge and the orientation of the output need. The report gives the model's\n"
+  "      peak and the output's parts.\n"
   "      --check exits with code 1 when the written result is not closed, not manifold, or\n"
   "      (with --self-intersections) self-intersecting.\n"
   "      OUT and the report are written completely to private temporary files, then renamed\n"
@@ -648,19 +651,33 @@ void write_repair_outputs(const Repair_options& o, const std::vector<Point>& poi
 
 // What is written: repeated triangles left out, components oriented, non-manifold vertices and
 // edges separated by duplicated points; its statistics (the report's counts) and, when asked,
-// its self-intersections.
+// its self-intersections. With `part_triangles`, the soup is oriented and measured one part of
+// at most that many triangles at a time (whole components; the same file and counts), so that the
+// tables of the whole soup are never held.
 struct Written_soup
 {
   ST::Orientation_report orientation;
   ST::Soup_statistics statistics;
   std::optional<std::size_t> intersecting;
+  std::size_t parts = 1;
+  std::size_t largest_part = 0; // triangles of the largest part (0: oriented whole)
 
-  Written_soup(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles, const Progress& progress)
-    : orientation(ST::orient_triangle_soup<Concurrency>(points, triangles,
-                                                         ST::parameters::orientation_policy(o.orientation_policy))),
-      statistics(ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency())))
+  Written_soup(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles, const Progress& progress,
+               std::optional<std::size_t> part_triangles = std::nullopt)
   {
-    progress("oriented the soup");
+    const auto policy = ST::parameters::orientation_policy(o.orientation_policy);
+    if(part_triangles) {
+      const ST::internal::Oriented_in_parts r =
+        ST::internal::orient_triangle_soup_in_parts<Concurrency>(points, triangles, *part_triangles, policy);
+      orientation = r.report;
+      statistics = r.statistics;
+      parts = r.parts;
+      largest_part = r.largest_part_triangles;
+    } else {
+      orientation = ST::orient_triangle_soup<Concurrency>(points, triangles, policy);
+      statistics = ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
+    }
+    progress(part_triangles ? "oriented the soup in " + std::to_string(parts) + " parts" : std::string("oriented the soup"));
     if(o.self_intersections) {
       intersecting = count_self_intersecting_pairs(points, triangles);
       progress("counted self-intersections");
@@ -730,11 +747,18 @@ private:
 // orientation and the statistics, 64 a triangle and 48 a point (the soup and the tables of the
 // output). For one point to two triangles, as on a closed mesh, that is 88 a triangle (78
 // measured at 4M, 86 at 40M); a soup of loose triangles (3 points a triangle) needs 208 (300k:
-// 93 MiB measured while the kept triangles were in memory).
+// 93 MiB measured while the kept triangles were in memory). Where the whole output does not fit,
+// it is oriented in parts of whole components (`orient_triangle_soup_in_parts()`): the soup held
+// (12 a triangle, 24 a point) with a state a triangle and a part a point (1 and 4), the closed
+// patches of parts whose boxes meet (4 a triangle at most: counted), and one part at a time, 88
+// a triangle of the part (84 measured on closed tori, with its points, copy, tables and
+// orientation).
 struct Tiled_memory_model
 {
   static constexpr double base = 16.0 * 1024 * 1024, per_region_triangle = 640, merge_per_triangle = 12,
-                          merge_per_point = 56, per_output_triangle = 64, per_output_point = 48;
+                          merge_per_point = 56, per_output_triangle = 64, per_output_point = 48,
+                          parts_per_triangle = 17, parts_per_point = 28,
+                          per_part_triangle = 88, smallest_part = 65536;
   double n, held;
   // the peak while the tiles are repaired
   double tiles_peak(std::size_t tiles) const
@@ -742,15 +766,50 @@ struct Tiled_memory_model
     const double region = tiles == 1 ? n : std::min(n, 1.25 * n / double(tiles) + 25000);
     return base + held + per_region_triangle * region;
   }
-  // the peak of the merge, the orientation and the writing of `triangles` on `points`
+  // the peak of the merge of `triangles` on `points`
+  static double merge_need(double triangles, double points)
+  {
+    return base + merge_per_triangle * triangles + merge_per_point * points;
+  }
+  // the peak of the merge, the orientation of the whole soup and the writing
   static double output_need(double triangles, double points)
   {
-    return base + std::max(merge_per_triangle * triangles + merge_per_point * points,
-                           per_output_triangle * triangles + per_output_point * points);
+    return std::max(merge_need(triangles, points), base + per_output_triangle * triangles + per_output_point * points);
   }
-  // that peak before the repair, whatever the number of tiles: one point for two triangles
-  double output_peak() const { return output_need(n, n / 2); }
-  double peak(std::size_t tiles) const { return std::max(tiles_peak(tiles), output_peak()); }
+  // the largest part of the orientation in parts that `limit` allows (the soup held, its parts'
+  // numbers and states, then one part's copy, tables and orientation); 0 if none
+  static double largest_part(double triangles, double points, double limit)
+  {
+    const double room = limit - base - parts_per_triangle * triangles - parts_per_point * points;
+    return room > 0 ? std::floor(room / per_part_triangle) : 0;
+  }
+  // whether the output fits under `limit`: the merge, then the orientation whole or in parts of
+  // at least `smallest_part` triangles
+  static bool output_fits(double triangles, double points, double limit)
+  {
+    return merge_need(triangles, points) <= limit &&
+           (output_need(triangles, points) <= limit || largest_part(triangles, points, limit) >= smallest_part);
+  }
+  // the peak of the merge, the orientation in parts of at most `part` triangles and the writing
+  static double output_in_parts_need(double triangles, double points, double part)
+  {
+    return std::max(merge_need(triangles, points),
+                    base + parts_per_triangle * triangles + parts_per_point * points + per_part_triangle * part);
+  }
+  // the least the output needs: whole, or in parts of `smallest_part` triangles
+  static double least_output_need(double triangles, double points)
+  {
+    return std::min(output_need(triangles, points), output_in_parts_need(triangles, points, smallest_part));
+  }
+  // the modelled peak of the output under `limit`, one point for two triangles: whole if that
+  // fits, else in the largest parts the limit allows
+  double output_peak(double limit) const
+  {
+    const double p = n / 2;
+    if(output_need(n, p) <= limit) return output_need(n, p);
+    return output_in_parts_need(n, p, std::min(n, largest_part(n, p, limit)));
+  }
+  double peak(std::size_t tiles, double limit) const { return std::max(tiles_peak(tiles), output_peak(limit)); }
 };
 
 std::string mebibytes(double bytes)
@@ -761,14 +820,15 @@ std::string mebibytes(double bytes)
 // --max-memory: the fewest tiles (a power of two up to 4096) whose modelled peak fits.
 std::size_t choose_tiles(const Tiled_memory_model& model, double limit)
 {
-  if(model.output_peak() > limit)
+  if(!Tiled_memory_model::output_fits(model.n, model.n / 2, limit))
     throw std::runtime_error("repair: --max-memory " + mebibytes(limit) + " is too small for " +
                       std::to_string(static_cast<long long>(model.n)) + " triangles: the merge and the orientation of the " +
-                      "output are in memory and need about " + mebibytes(model.output_peak()));
+                      "output are in memory and need about " +
+                      mebibytes(Tiled_memory_model::least_output_need(model.n, model.n / 2)));
   for(std::size_t tiles = 1; tiles <= 4096; tiles *= 2)
     if(model.tiles_peak(tiles) <= limit) return tiles;
   throw std::runtime_error("repair: --max-memory " + mebibytes(limit) + " is too small: 4096 tiles need about " +
-                    mebibytes(model.peak(4096)));
+                    mebibytes(model.peak(4096, limit)));
 }
 
 // Every input file: IN, then the other files of an assembly.
@@ -885,14 +945,21 @@ int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* 
   }
   if(show) std::cerr << "\n";
   if(!root) return 0;
+  // Under --max-memory, an output whose orientation as a whole would not fit is oriented in the
+  // largest parts the limit allows (the same file).
+  std::optional<std::size_t> part_triangles;
+  const double n = double(triangles.size()), p = double(points.size()); // (before the orientation)
   if(model) {
     // The model took one point for two triangles; a soup left with more (loose triangles, open
-    // seams) needs more for its output than the limit allowed for.
-    const double need = Tiled_memory_model::output_need(double(triangles.size()), double(points.size()));
-    if(need > *o.max_memory)
+    // seams) may need more for its output than the limit allowed for.
+    if(!Tiled_memory_model::output_fits(n, p, *o.max_memory))
       std::cerr << "repair: warning: the repaired soup has " << points.size() << " points for " << triangles.size()
                 << " triangles (the model of --max-memory takes one for two); its merge and orientation need about "
-                << mebibytes(need) << ", above --max-memory " << mebibytes(*o.max_memory) << "\n";
+                << mebibytes(Tiled_memory_model::least_output_need(n, p)) << ", above --max-memory "
+                << mebibytes(*o.max_memory) << "\n";
+    if(Tiled_memory_model::output_need(n, p) > *o.max_memory)
+      part_triangles = static_cast<std::size_t>(
+        std::max(Tiled_memory_model::smallest_part, Tiled_memory_model::largest_part(n, p, *o.max_memory)));
     // (a soup the tiles cannot decide is repaired whole: its memory is that of the repair in memory)
     if(t.whole_soup)
       std::cerr << "repair: warning: the soup was repaired as one tile (" << t.whole_soup_reason
@@ -901,7 +968,11 @@ int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* 
   }
   const Progress progress(t.input_triangles > 1000000);
   progress("repaired " + std::to_string(t.input_triangles) + " triangles in " + std::to_string(t.tiles) + " tiles");
-  const Written_soup written(o, points, triangles, progress);
+  const Written_soup written(o, points, triangles, progress, part_triangles);
+  if(part_triangles && written.largest_part > *part_triangles)
+    std::cerr << "repair: warning: a part of the output (whole components) has " << written.largest_part
+              << " triangles, more than the " << *part_triangles << " that --max-memory " << mebibytes(*o.max_memory)
+              << " allows for its orientation\n";
   Report rep;
   rep.add_string("input", input_names(o));
   rep.add_string("output", o.out);
@@ -914,7 +985,13 @@ int run_tiled_repair(const Repair_options& o, tool::Tile_team& team, Read_soup* 
   rep.add("soup_triangles", t.output_triangles);
   if(model) {
     rep.add("max_memory", static_cast<std::size_t>(*o.max_memory));
-    rep.add("modelled_peak", static_cast<std::size_t>(model->peak(tiles)));
+    // (oriented in parts: the output's need with its largest part, known now)
+    const double peak = part_triangles ? std::max(model->tiles_peak(tiles),
+                                                  Tiled_memory_model::output_in_parts_need(
+                                                    n, p, double(written.largest_part)))
+                                       : model->peak(tiles, *o.max_memory);
+    rep.add("modelled_peak", static_cast<std::size_t>(peak));
+    rep.add("output_parts", written.parts);
   }
   rep.add("tiles", t.tiles);
   rep.add("tile_runs", t.tile_runs);
@@ -1014,7 +1091,7 @@ int repair_in_memory(const Repair_options& o, Read_soup& soup, bool soup_read,
   Report rep = repair_report(o, read, r, written.orientation, written.statistics, written.intersecting);
   if(model) {
     rep.add("max_memory", static_cast<std::size_t>(*o.max_memory));
-    rep.add("modelled_peak", static_cast<std::size_t>(model->peak(1)));
+    rep.add("modelled_peak", static_cast<std::size_t>(model->peak(1, *o.max_memory)));
   }
   write_repair_outputs(o, points, triangles, rep, progress);
   if(!o.html_file.empty()) tool::write_repair_html(o.html_file, o.in, html_input, points, triangles, r, rep.json());
