@@ -6,7 +6,7 @@
 # the default (4 parts of 10,003,200 triangles) writes 2 GB of input and as much of output.
 #   BUILD_DIR   Release build folder (default build-scale)
 #   PARTS U V   the assembly (default 4 3200 1563)
-#   MAX_MEMORY  the limit given to the tool (default 8G)
+#   MAX_MEMORY  the limit given to the tool (default 2G: the output is then oriented in parts)
 #   TOLERANCE   the tolerance (default 3e-5: above the jitter's 1.4e-5, far below the edges)
 #   WORK_DIR    where the files go (default: a new folder in the temporary directory)
 set -euo pipefail
@@ -23,7 +23,7 @@ start=$SECONDS
 echo "== wrote the assembly in $((SECONDS - start)) s: $(du -sh "$work" | cut -f1)"
 parts=("$work"/part_*.stl)
 command=("$build/tools/soup_topology" repair "${parts[@]}" -o "$work/repaired.stl"
-         --tolerance "${TOLERANCE:-3e-5}" --max-memory "${MAX_MEMORY:-8G}" --spill-folder "$work")
+         --tolerance "${TOLERANCE:-3e-5}" --max-memory "${MAX_MEMORY:-2G}" --spill-folder "$work")
 if [ -x /usr/bin/time ]; then
   /usr/bin/time -f "== %e s, peak resident memory %M KiB" "${command[@]}"
 else
