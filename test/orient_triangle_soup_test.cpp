@@ -915,7 +915,8 @@ TEST(OrientTriangleSoup, InPartsAsWhole)
         // on threads, the same
         std::vector<Point> pp = soup.points;
         std::vector<Triangle> tt = soup.triangles;
-        const auto r2 = ST::internal::orient_triangle_soup_in_parts<CGAL::Parallel_if_available_tag>(pp, tt, part_triangles, np);
+        const auto r2 =
+          ST::internal::orient_triangle_soup_in_parts<CGAL::Parallel_if_available_tag>(pp, tt, part_triangles, np);
         EXPECT_EQ(tt, t);
         EXPECT_EQ(r2.report.orientation_flips, whole.orientation_flips);
       }

@@ -811,7 +811,8 @@ TEST(TiledReconstruction, ToolOrientsTheOutputInPartsUnderAMemoryLimit)
   EXPECT_GT(tiles, 1) << limited.first;
   EXPECT_EQ(soup_test::json_integer(limited.first, "output_parts"), 4) << limited.first;
   EXPECT_EQ(soup_test::json_integer(limited.first, "components"), 4) << limited.first;
-  EXPECT_LE(soup_test::json_integer(limited.first, "modelled_peak"), soup_test::json_integer(limited.first, "max_memory"));
+  EXPECT_LE(soup_test::json_integer(limited.first, "modelled_peak"),
+            soup_test::json_integer(limited.first, "max_memory"));
   EXPECT_EQ(limited.first.find("warning"), std::string::npos) << limited.first;
   const auto forced = repair("--tiles " + std::to_string(tiles), folder + "/forced.stl");
   ASSERT_EQ(forced.second, 0) << forced.first;
@@ -821,7 +822,8 @@ TEST(TiledReconstruction, ToolOrientsTheOutputInPartsUnderAMemoryLimit)
     forced_bytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
   EXPECT_GT(limited_bytes.size(), 84u + 50u * 300000u);
   EXPECT_TRUE(limited_bytes == forced_bytes);
-  for(const char* key : {"orientation_flips", "duplicated_points", "border_edges", "non_manifold_vertices", "output_vertices"})
+  for(const char* key :
+      {"orientation_flips", "duplicated_points", "border_edges", "non_manifold_vertices", "output_vertices"})
     EXPECT_EQ(soup_test::json_integer(limited.first, key), soup_test::json_integer(forced.first, key)) << key;
   std::filesystem::remove_all(folder);
 }

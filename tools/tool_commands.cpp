@@ -662,8 +662,8 @@ struct Written_soup
   std::size_t parts = 1;
   std::size_t largest_part = 0; // triangles of the largest part (0: oriented whole)
 
-  Written_soup(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles, const Progress& progress,
-               std::optional<std::size_t> part_triangles = std::nullopt)
+  Written_soup(const Repair_options& o, std::vector<Point>& points, std::vector<Triangle>& triangles,
+               const Progress& progress, std::optional<std::size_t> part_triangles = std::nullopt)
   {
     const auto policy = ST::parameters::orientation_policy(o.orientation_policy);
     if(part_triangles) {
@@ -675,9 +675,11 @@ struct Written_soup
       largest_part = r.largest_part_triangles;
     } else {
       orientation = ST::orient_triangle_soup<Concurrency>(points, triangles, policy);
-      statistics = ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
+      statistics =
+        ST::compute_statistics<Concurrency>(points, ST::Adjacency_tables(triangles, points.size(), Concurrency()));
     }
-    progress(part_triangles ? "oriented the soup in " + std::to_string(parts) + " parts" : std::string("oriented the soup"));
+    progress(part_triangles ? "oriented the soup in " + std::to_string(parts) + " parts"
+                            : std::string("oriented the soup"));
     if(o.self_intersections) {
       intersecting = count_self_intersecting_pairs(points, triangles);
       progress("counted self-intersections");

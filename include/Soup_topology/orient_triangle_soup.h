@@ -123,6 +123,18 @@ Orientation_report orient_triangle_soup(PointRange& pts, TriangleRange& tris,
 
 namespace internal {
 
+/// the rules of `Soup_orienter` for the `orientation_policy` of `np`.
+template <class NamedParameters>
+Patch_orientation_rules patch_orientation_rules(const NamedParameters& np)
+{
+  const Orientation_policy policy = CGAL::parameters::choose_parameter(
+    CGAL::parameters::get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
+  Patch_orientation_rules rules;
+  rules.keep_consistent_input = (policy == Orientation_policy::KEEP_INPUT);
+  rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
+  return rules;
+}
+
 /// `orient_triangle_soup()` with the adjacency tables of the soup, when the caller has them
 /// (`tables` not null: the tables of exactly `tris` over `pts`, same triangles in the same order,
 /// as a pipeline keeps them up to date; they are read, not changed). The result (points,
@@ -143,13 +155,8 @@ Orientation_report orient_triangle_soup_with_tables(PointRange& pts, TriangleRan
                                                                      Default_kernel>::type;
   check_triangle_soup<ConcurrencyTag>(tris, pts.size());
   check_finite_points<ConcurrencyTag>(pts, CGAL::Identity_property_map<Point>());
-  const Orientation_policy policy =
-    choose_parameter(get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
-  Patch_orientation_rules rules;
-  rules.keep_consistent_input = (policy == Orientation_policy::KEEP_INPUT);
-  rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
-  Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel, tables);
+  Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, patch_orientation_rules(np), kernel, tables);
   Orientation_report report;
   copy_orientation_counts(orienter.template run<ConcurrencyTag>(), report);
   return report;

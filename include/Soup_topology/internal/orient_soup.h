@@ -48,7 +48,8 @@ inline double twice_solid_angle(const std::array<double, 3> (&c)[3])
     return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
   };
   const double la = std::sqrt(dot(c[0], c[0])), lb = std::sqrt(dot(c[1], c[1])), lc = std::sqrt(dot(c[2], c[2]));
-  const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) - c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
+  const double det = c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
+                     c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
                      c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
   const double den = la * lb * lc + dot(c[0], c[1]) * lc + dot(c[0], c[2]) * lb + dot(c[1], c[2]) * la;
   return 2 * std::atan2(det, den);
@@ -109,8 +110,8 @@ public:
   /// have to be left out.
   Soup_orienter(PointRange& points, TriangleRange& triangles, const Patch_orientation_rules& rules, const Kernel& kernel,
                 const Adjacency_tables* tables = nullptr, Orientation_decisions* decisions = nullptr)
-    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size()), tables_(tables),
-      decisions_(decisions)
+    : points_(points), triangles_(triangles), rules_(rules), kernel_(kernel), input_points_(points.size()),
+      tables_(tables), decisions_(decisions)
   {
     if(tables_ && (tables_->number_of_triangles() != triangles_.size() || tables_->number_of_vertices() != points_.size()))
       throw Invalid_input("orientation: the adjacency tables given are not those of the soup");

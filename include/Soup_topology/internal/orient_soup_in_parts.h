@@ -79,11 +79,7 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
   using size_type = Adjacency_tables::size_type;
   check_triangle_soup<ConcurrencyTag>(tris, pts.size());
   check_finite_points<ConcurrencyTag>(pts, CGAL::Identity_property_map<Point>());
-  const Orientation_policy policy =
-    choose_parameter(get_parameter(np, internal_np::orientation_policy), Orientation_policy::BOUND_VOLUME);
-  Patch_orientation_rules rules;
-  rules.keep_consistent_input = (policy == Orientation_policy::KEEP_INPUT);
-  rules.nest_closed_patches = (policy != Orientation_policy::OUTWARD);
+  const Patch_orientation_rules rules = patch_orientation_rules(np);
   const Kernel kernel = choose_parameter<Kernel>(get_parameter(np, CGAL::internal_np::geom_traits));
 
   const std::size_t n = pts.size(), m = tris.size();
@@ -159,7 +155,9 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
   // longer `GIVEN`.
   constexpr std::uint32_t in_part = std::uint32_t(1) << 31;
   if(n >= in_part) throw Invalid_input("orientation in parts: 2^31 points or more");
-  const auto in_this_part = [&](std::size_t t) { return state[t] == GIVEN && (part_of[corner_of(t, 0)] & in_part) != 0; };
+  const auto in_this_part = [&](std::size_t t) {
+    return state[t] == GIVEN && (part_of[corner_of(t, 0)] & in_part) != 0;
+  };
   for(std::size_t q = 0; q < parts; ++q) {
     PointRange part_points;
     TriangleRange part_triangles_of_q;
@@ -182,8 +180,8 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
     Orientation_decisions decisions;
     decisions.with_triangles = part_meets_another[q] != 0;
     {
-      Soup_orienter<PointRange, TriangleRange, Kernel> orienter(part_points, part_triangles_of_q, rules, kernel, nullptr,
-                                                                &decisions);
+      Soup_orienter<PointRange, TriangleRange, Kernel> orienter(part_points, part_triangles_of_q, rules, kernel,
+                                                                nullptr, &decisions);
       const auto counts = orienter.template run<ConcurrencyTag>();
       out.report.duplicate_triangles += counts.duplicate_triangles;
       out.report.orientation_flips += counts.orientation_flips;
@@ -212,7 +210,9 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
       ++j;
     }
     const std::size_t first_copy = n + copied_from.size();
-    const auto to_soup = [&](std::size_t v) { return v < part_n ? std::size_t(global_point[v]) : first_copy + (v - part_n); };
+    const auto to_soup = [&](std::size_t v) {
+      return v < part_n ? std::size_t(global_point[v]) : first_copy + (v - part_n);
+    };
     for(std::size_t k = 0; k < kept.size(); ++k) {
       const std::array<std::size_t, 3> c = triangle_indices(part_triangles_of_q[k]);
       assign_triangle(tris[kept[k]], to_soup(c[0]), to_soup(c[1]), to_soup(c[2]));
@@ -273,7 +273,8 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
   if(!copied_from.empty()) {
     std::vector<size_type> order(copied_from.size());
     for(std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<size_type>(k);
-    std::stable_sort(order.begin(), order.end(), [&](size_type a, size_type b) { return copied_from[a] < copied_from[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_type a, size_type b) { return copied_from[a] < copied_from[b]; });
     std::vector<size_type> final_index(order.size());
     for(std::size_t r = 0; r < order.size(); ++r) final_index[order[r]] = static_cast<size_type>(n + r);
     for(std::size_t t = 0; t < m; ++t) {
