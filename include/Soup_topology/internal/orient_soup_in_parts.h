@@ -63,7 +63,13 @@ struct Oriented_in_parts
 /// turned; the copies that separate non-manifold vertices are numbered vertex after vertex in the
 /// order of the soup. Repeated triangles are left out at the end, the order of the others kept.
 ///
-/// \throws Invalid_input as `orient_triangle_soup()`; nothing is changed then.
+/// Work: each part scans the soup twice (to cut it out and to write it back) and the boxes of the
+/// parts are compared pairwise, so `k` parts cost `k` passes over the soup and `k^2` box tests:
+/// meant for a few large parts (the tool gives a part room for 65,536 triangles at least; two
+/// consecutive parts hold more than that together, so there are at most `2 t / 65,536 + 1`).
+///
+/// \throws Invalid_input as `orient_triangle_soup()`, or for 2^31 points or more; nothing is
+///         changed then.
 template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange,
           class NamedParameters = CGAL::parameters::Default_named_parameters>
 Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& tris, std::size_t part_triangles,
