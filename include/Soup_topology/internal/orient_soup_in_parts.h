@@ -48,7 +48,8 @@ struct Oriented_in_parts
 /// part at a time, and measures the oriented soup as `compute_statistics()` does over tables of the
 /// whole soup. A *part* is a set of whole components of the soup (triangles connected through
 /// shared points), components taken in the order of their smallest point and put together while
-/// the part holds at most `part_triangles` triangles (a larger component is a part alone). Only one
+/// the part holds at most `part_triangles` triangles (a larger component is a part alone; a soup
+/// of one part is oriented in place, as `orient_triangle_soup()` does, without a copy). Only one
 /// part's copy, its tables and its orientation are held at a time (about 85 bytes a triangle of the
 /// part, measured on closed meshes), beside the soup, 4 bytes a point and 1 a triangle, and 4 bytes
 /// a triangle of the closed patches of the parts whose boxes meet another part's box.
@@ -128,6 +129,16 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
 
   Oriented_in_parts out;
   out.parts = parts;
+  // One part (one component larger than `part_triangles`, or a soup that fits): oriented in
+  // place, as a whole, without a copy of the soup.
+  if(parts <= 1) {
+    std::vector<std::uint32_t>().swap(part_of);
+    out.largest_part_triangles = m;
+    Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
+    copy_orientation_counts(orienter.template run<ConcurrencyTag>(), out.report);
+    out.statistics = compute_statistics<ConcurrencyTag>(pts, Adjacency_tables(tris, pts.size(), ConcurrencyTag()));
+    return out;
+  }
   // The boxes of the parts: the closed patches of a part whose box meets no other part's box can
   // neither enclose nor be enclosed by a patch of another part, and their triangles are not kept
   // for the nesting across parts.
