@@ -101,6 +101,36 @@ TEST_P(ParallelRealMesh, AdjacencyTables)
   for_each_thread_count([&](int) { expect_same_tables(ST::Adjacency_tables(m.triangles, m.points.size(), Parallel()), shuffled); });
 }
 
+// The parallel build cuts the vertices into buckets (more than 2^10 vertices each past 4 Mi
+// vertices) and the triangles into at most 64 blocks (more than 2^14 triangles each past 1 Mi
+// triangles), and groups the edges of each vertex by a sort past 32 of them. A soup of 4.5 M
+// vertices, most of them in no triangle, and 1.1 M triangles in random order: a strip, a fan of
+// 100,000 triangles around the last vertex, a non-manifold edge of 40 triangles, a triangle
+// repeated 10 times, and random triangles across all the buckets: the tables of the sequential
+// build on any number of threads.
+TEST(ParallelTables, ManyBucketsManyBlocksLongRowsAndNonManifoldEdges)
+{
+  const std::size_t nv = 4'500'000;
+  std::vector<Triangle> triangles;
+  for(std::size_t i = 0; i < 300'000; ++i)
+    triangles.push_back(i % 2 == 0 ? Triangle{i, i + 1, i + 2} : Triangle{i + 1, i, i + 2});
+  for(std::size_t j = 0; j < 100'000; ++j) triangles.push_back({nv - 1, 3'000'000 + j, 3'000'000 + j + 1});
+  for(std::size_t k = 0; k < 40; ++k) triangles.push_back({2'000'000, 2'000'001, 2'000'002 + k});
+  for(std::size_t k = 0; k < 10; ++k) triangles.push_back({1'000'000, 1'000'001, 1'000'002});
+  std::mt19937_64 random(5);
+  std::uniform_int_distribution<std::size_t> vertex(0, nv - 1);
+  while(triangles.size() < 1'100'000) {
+    const Triangle t{vertex(random), vertex(random), vertex(random)};
+    if(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) triangles.push_back(t);
+  }
+  shuffle_triangles(triangles, 13);
+  const ST::Adjacency_tables expected(triangles, nv);
+  ASSERT_EQ(expected.triangles_around_vertex(nv - 1).size(), 100'000u);
+  ASSERT_GE(expected.triangles_around_vertex(2'000'001).size(), 40u);
+  ASSERT_FALSE(expected.non_manifold_edges().empty());
+  for_each_thread_count([&](int) { expect_same_tables(ST::Adjacency_tables(triangles, nv, Parallel()), expected); });
+}
+
 // The global queries of the tables and the statistics, on the mesh, its exploded soup (one
 // component per triangle) and the mesh with repeated, reversed and fanned triangles added
 // (non-manifold edges and vertices, inconsistent orientations): the same lists, counts and ids
@@ -309,10 +339,15 @@ TEST(ParallelUnionFind, ConcurrentUnionsGiveTheSequentialSetsAndRoots)
   for_each_thread_count([&](int) {
     ST::internal::Concurrent_union_find concurrent(n);
     ST::internal::for_each_index<Parallel>(pairs.size(), [&](std::size_t k) { concurrent.unite(pairs[k].first, pairs[k].second); }, 1024);
-    ST::internal::Union_find sets;
+    ST::internal::Union_find sets, by_blocks;
     concurrent.into(sets);
+    // handed over by blocks on the threads, then read as roots (`take_roots()`: one pass)
+    concurrent.into(by_blocks, [](std::size_t size, const auto& f) {
+      ST::internal::for_each_block<Parallel>(size, 1000, f);
+    });
+    const std::vector<std::uint32_t> roots = by_blocks.take_roots();
     std::size_t different = 0;
-    for(std::uint32_t i = 0; i < n; ++i) different += sets.find(i) != expected.find(i);
+    for(std::uint32_t i = 0; i < n; ++i) different += sets.find(i) != expected.find(i) || roots[i] != expected.find(i);
     EXPECT_EQ(different, 0u);
   });
 }

@@ -93,11 +93,11 @@ private:
 ///
 /// **Construction** is linear in the size of the soup, whatever the soup: one pass fills the
 /// vertex table, then the edges of each vertex `a` are grouped by their other end `b > a` (a few
-/// sorted in place, many bucketed), so every edge is met with all its triangles at once (a
-/// triangle repeated many times, or many triangles on one edge, cost no more than as many
-/// separate triangles). The global queries
-/// (`non_manifold_edges()`, `non_manifold_vertices()`, `number_of_connected_components()`, ...)
-/// are linear too.
+/// sorted in place, many bucketed; on several threads, many sorted: `O(k log k)` for the `k` edges
+/// of a vertex), so every edge is met with all its triangles at once (a triangle repeated many
+/// times, or many triangles on one edge, cost no more than as many separate triangles). The
+/// global queries (`non_manifold_edges()`, `non_manifold_vertices()`,
+/// `number_of_connected_components()`, ...) are linear too.
 ///
 /// **Local updates.** `replace_vertex()` (welding, the patent's rules (a)-(c)) and
 /// `split_triangle()` (T-junction repair, rule tables (15) and (17)) change the tables locally:
@@ -204,8 +204,7 @@ public:
         ++face_id;
       }
     }
-    // (on one thread, the sequential build: the same tables without the atomic counts and the
-    // sort of every row)
+    // (on one thread, the sequential build: the same tables in fewer passes over memory)
     if(internal::runs_on_several_threads<ConcurrencyTag>())
       build_in_parallel<ConcurrencyTag>(number_of_points);
     else
@@ -722,35 +721,61 @@ private:
   // a vertex of a mesh has about 12, so nearly every vertex of a soup takes the short path.
   static constexpr std::size_t sorted_row_limit = 32;
 
+  // An end of an edge {a, b} met in the pass of a: b, and the copy of the edge.
+  struct Edge_end
+  {
+    size_type other;
+    Edge edge;
+  };
+
+  // What the pass of the edges reuses from one vertex to the next.
+  struct Edge_pass_scratch
+  {
+    std::vector<Edge_end> ends;
+    std::vector<Edge> grouped;
+    std::vector<size_type> mark;  // mark[b] == a + 1: b has a bucket in the pass of a (long lists, `with_marks`)
+    std::vector<size_type> slot;  // the bucket of b, valid when marked
+    std::vector<size_type> others, count, cursor;
+  };
+
   // Calls f(a, b, first, last) once for every distinct edge {a, b} (a < b) of the triangles, with
   // [first, last) its copies (triangle, local index) in increasing triangle order (the edges of
-  // one vertex a come in no particular order of b). The edges of each vertex a to the vertices
-  // b > a are gathered from its triangles, which are read once, and grouped by b:
-  // - up to `sorted_row_limit` of them, by a stable insertion sort on b, in place: it reads
-  //   nothing but the vertex's own triangles, which matters when the other ends are far apart in
-  //   memory (a soup whose triangles are not in mesh order);
-  // - more, by buckets (count, then place, with a mark per vertex b made at the first such
-  //   vertex), so the enumeration is linear in the size of the soup however many triangles share
-  //   a vertex or an edge.
+  // one vertex a come in no particular order of b): `for_each_edge_of_vertices()` over them all.
   template <class F>
   void for_each_edge(F&& f) const
   {
+    Edge_pass_scratch scratch;
+    for_each_edge_of_vertices(0, number_of_vertices(), true, scratch, f);
+  }
+
+  // `f(a, b, first, last)` for the edges {a, b}, a < b, of the vertices a of [begin, end). The
+  // edges of each vertex a to the vertices b > a are gathered from its triangles, which are read
+  // once, and grouped by b:
+  // - up to `sorted_row_limit` of them, by a stable insertion sort on b, in place: it reads
+  //   nothing but the vertex's own triangles, which matters when the other ends are far apart in
+  //   memory (a soup whose triangles are not in mesh order);
+  // - more, `with_marks`, by buckets (count, then place, with a mark per vertex b made at the
+  //   first such vertex: two arrays over all the vertices, made once for the whole pass), so the
+  //   enumeration is linear in the size of the soup however many triangles share a vertex or an
+  //   edge; without marks (a pass of one block of vertices among many, on TBB's threads, which
+  //   must not each hold arrays over all the vertices), by a sort on (b, copy), which gives the same
+  //   groups in the same order, in O(k log k) for the k edges of the vertex.
+  template <class F>
+  void for_each_edge_of_vertices(std::size_t begin, std::size_t end, bool with_marks, Edge_pass_scratch& s,
+                                 F& f) const
+  {
     const std::size_t nv = number_of_vertices();
-    struct End { size_type other; Edge edge; };
-    std::vector<End> ends;
-    std::vector<Edge> grouped;
-    std::vector<size_type> mark;  // mark[b] == a + 1: b has a bucket in the pass of a (long lists only)
-    std::vector<size_type> slot;  // the bucket of b, valid when marked
-    std::vector<size_type> others, count, cursor;
+    std::vector<Edge_end>& ends = s.ends;
+    std::vector<Edge>& grouped = s.grouped;
     // (the rows of the triangles of the vertices ahead asked for while they are found far from
     // each other, as in `for_each_vertex_of_several_fans()`: on triangles in random order every
     // row is a miss)
     constexpr size_type lists_ahead = 16, rows_ahead = 8, rows_per_vertex = 8;
     internal::Read_ahead_switch read_ahead;
-    for(size_type a = 0; a < nv; ++a) {
+    for(size_type a = static_cast<size_type>(begin); a < end; ++a) {
       if(read_ahead.on()) {
-        if(a + lists_ahead < nv) prefetch_triangles_around_vertex(a + lists_ahead);
-        if(a + rows_ahead < nv) {
+        if(a + lists_ahead < end) prefetch_triangles_around_vertex(a + lists_ahead);
+        if(a + rows_ahead < end) {
           const Id_range ahead = triangles_around_vertex(a + rows_ahead);
           const std::size_t some = std::min<std::size_t>(ahead.size(), rows_per_vertex);
           for(std::size_t k = 0; k < some; ++k)
@@ -765,16 +790,22 @@ private:
       for(size_type t : around) {
         const int ia = local_index(t, a);
         const size_type next = vertex(t, (ia + 1) % 3), previous = vertex(t, (ia + 2) % 3);
-        if(next > a) ends.push_back(End{next, Edge{t, ia}});
-        if(previous > a) ends.push_back(End{previous, Edge{t, (ia + 2) % 3}});
+        if(next > a) ends.push_back(Edge_end{next, Edge{t, ia}});
+        if(previous > a) ends.push_back(Edge_end{previous, Edge{t, (ia + 2) % 3}});
       }
       grouped.resize(ends.size());
-      if(ends.size() <= sorted_row_limit) {
-        for(std::size_t k = 1; k < ends.size(); ++k) {
-          const End e = ends[k];
-          std::size_t j = k;
-          for(; j > 0 && e.other < ends[j - 1].other; --j) ends[j] = ends[j - 1];
-          ends[j] = e;
+      if(ends.size() <= sorted_row_limit || !with_marks) {
+        if(ends.size() <= sorted_row_limit) {
+          for(std::size_t k = 1; k < ends.size(); ++k) {
+            const Edge_end e = ends[k];
+            std::size_t j = k;
+            for(; j > 0 && e.other < ends[j - 1].other; --j) ends[j] = ends[j - 1];
+            ends[j] = e;
+          }
+        } else {
+          std::sort(ends.begin(), ends.end(), [](const Edge_end& x, const Edge_end& y) {
+            return x.other < y.other || (x.other == y.other && x.edge < y.edge);
+          });
         }
         for(std::size_t k = 0; k < ends.size(); ++k) grouped[k] = ends[k].edge;
         std::size_t k = 0;
@@ -786,13 +817,18 @@ private:
         }
         continue;
       }
+      std::vector<size_type>& mark = s.mark;
+      std::vector<size_type>& slot = s.slot;
       if(mark.empty()) {
         mark.assign(nv, 0);
         slot.resize(nv);
       }
+      std::vector<size_type>& others = s.others;
+      std::vector<size_type>& count = s.count;
+      std::vector<size_type>& cursor = s.cursor;
       others.clear();
       count.clear();
-      for(const End& e : ends) {
+      for(const Edge_end& e : ends) {
         if(mark[e.other] != a + 1) {
           mark[e.other] = a + 1;
           slot[e.other] = static_cast<size_type>(others.size());
@@ -804,7 +840,7 @@ private:
       cursor.resize(others.size());
       std::size_t total = 0;
       for(std::size_t k = 0; k < others.size(); ++k) { cursor[k] = static_cast<size_type>(total); total += count[k]; }
-      for(const End& e : ends) grouped[cursor[slot[e.other]]++] = e.edge;
+      for(const Edge_end& e : ends) grouped[cursor[slot[e.other]]++] = e.edge;
       const Edge* first = grouped.data();
       for(std::size_t k = 0; k < others.size(); ++k) {
         f(a, others[k], first, first + count[k]);
@@ -834,96 +870,105 @@ private:
     for_each_edge([this](size_type, size_type, const Edge* first, const Edge* last) { set_group(first, last); });
   }
 
-  // build() on TBB's threads, with the same result. The vertex rows are counted with atomic
-  // cursors, each corner keeping the count it drew (its place in its vertex's row, in the order
-  // the threads came), then filled at those places without atomics, then each row is sorted (its
-  // triangles are distinct: one order only). The places are kept in `neighbors_`, which has one
-  // entry per corner and is written with the neighbours only afterwards: no memory is added. The
-  // edge entries of the edges {a, b}, a < b, are written in the pass of a, each by one pass only;
-  // the passes of the vertices run in parallel, each gathering the edges of a by their other end.
+  // build() on TBB's threads, with the same result, and no atomic operation: the vertex table is
+  // filled by `fill_vertex_rows_by_buckets()`, then the edges of blocks of vertices are grouped
+  // as `build()` groups them (`for_each_edge_of_vertices()`), the blocks in parallel: the entries
+  // of an edge {a, b}, a < b, are written in the pass of a only.
   template <class ConcurrencyTag>
   void build_in_parallel(std::size_t number_of_points)
   {
     const std::size_t nv = number_of_points, m = triangles_.size();
-    // written whole by the prefix pass below
-    vertex_begin_.resize(nv);
-    vertex_size_.resize(nv);
     decltype(vertex_capacity_)().swap(vertex_capacity_); // every list is full: see `keep_capacities()`
-    neighbors_.resize(3 * m); // the places of the corners in their rows first (written whole below)
-    {
-      const std::unique_ptr<std::atomic<size_type>[]> cursor(new std::atomic<size_type>[nv]);
-      internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
-      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
-        for(std::size_t i = 0; i < 3; ++i)
-          neighbors_[3 * t + i] = cursor[triangles_[t][i]].fetch_add(1, std::memory_order_relaxed);
-      });
-      // The exclusive prefix sums of the degrees by blocks: the blocks' totals, their prefix sums
-      // (one per block, in order), then the offsets of each block from its own start.
-      const std::size_t block = internal::default_block_size;
-      std::vector<std::size_t> block_offset(internal::number_of_blocks(nv, block) + 1, 0);
-      internal::for_each_block<ConcurrencyTag>(nv, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
-        std::size_t total = 0;
-        for(std::size_t v = begin; v != end; ++v) total += cursor[v].load(std::memory_order_relaxed);
-        block_offset[g + 1] = total;
-      });
-      for(std::size_t g = 1; g < block_offset.size(); ++g) block_offset[g] += block_offset[g - 1];
-      internal::for_each_block<ConcurrencyTag>(nv, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
-        std::size_t offset = block_offset[g];
-        for(std::size_t v = begin; v != end; ++v) {
-          const size_type d = cursor[v].load(std::memory_order_relaxed);
-          vertex_begin_[v] = offset;
-          vertex_size_[v] = d;
-          offset += d;
-        }
-      });
-    }
-    ids_.resize(3 * m); // one entry per corner, every one written below
-    internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
-      for(std::size_t i = 0; i < 3; ++i)
-        ids_[vertex_begin_[triangles_[t][i]] + neighbors_[3 * t + i]] = static_cast<size_type>(t);
-    });
-    internal::for_each_index<ConcurrencyTag>(nv, [&](std::size_t v) {
-      size_type* b = ids_.data() + vertex_begin_[v];
-      std::sort(b, b + vertex_size_[v]);
-    });
+    fill_vertex_rows_by_buckets<ConcurrencyTag>(nv);
     internal::for_each_index<ConcurrencyTag>(3 * m, [&](std::size_t k) { neighbors_[k] = border_edge; });
-    struct End { size_type other; Edge edge; };
     internal::for_each_block<ConcurrencyTag>(nv, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-      std::vector<End> ends;
-      for(std::size_t a = begin; a != end; ++a) {
-        ends.clear();
-        for(size_type t : triangles_around_vertex(static_cast<size_type>(a))) {
-          const int ia = local_index(t, static_cast<size_type>(a));
-          const size_type next = vertex(t, (ia + 1) % 3), previous = vertex(t, (ia + 2) % 3);
-          if(next > a) ends.push_back(End{next, Edge{t, ia}});
-          if(previous > a) ends.push_back(End{previous, Edge{t, (ia + 2) % 3}});
-        }
-        std::sort(ends.begin(), ends.end(), [](const End& x, const End& y) {
-          return x.other < y.other || (x.other == y.other && x.edge < y.edge);
-        });
-        group_buffer(ends);
-      }
+      Edge_pass_scratch scratch;
+      const auto write_group = [this](size_type, size_type, const Edge* first, const Edge* last) {
+        set_group(first, last);
+      };
+      for_each_edge_of_vertices(begin, end, false, scratch, write_group);
     });
   }
 
-  // Writes the edge entries of the groups of `ends` (sorted by other end): one group per edge.
-  template <class Ends>
-  void group_buffer(const Ends& ends)
+  // The vertex table of `build()` (each row in increasing triangle order, the rows in vertex
+  // order), filled on TBB's threads as a two-level counting sort of the corners by vertex:
+  // - the vertices are cut into buckets of 2^shift consecutive vertices (at most
+  //   `most_vertex_buckets` buckets), the triangles into at most `most_triangle_blocks` blocks;
+  //   neither depends on the number of threads;
+  // - each block of triangles counts its corners per bucket (an array of one entry per bucket:
+  //   the counting stays in cache whatever the order of the triangles);
+  // - those counts, taken bucket after bucket and in each bucket block after block, give every
+  //   block its place in every bucket's range of `ids_`: each block copies its corners there, in
+  //   the order of its triangles (the triangle into `ids_`, its vertex into `neighbors_`, whose
+  //   3 entries a triangle are rewritten with the neighbours afterwards: no memory is added);
+  // - each bucket, whose range of `ids_` now holds its corners in increasing triangle order,
+  //   counts the degrees of its vertices, which gives their rows, and places its corners in them
+  //   by a stable counting sort through a buffer of the bucket's size.
+  // A row is thus in increasing triangle order without a sort, as in `build()`.
+  template <class ConcurrencyTag>
+  void fill_vertex_rows_by_buckets(std::size_t nv)
   {
-    std::size_t k = 0;
-    while(k < ends.size()) {
-      std::size_t l = k + 1;
-      while(l < ends.size() && ends[l].other == ends[k].other) ++l;
-      const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(l - k);
-      if(n == 2) {
-        set_neighbor(ends[k].edge.triangle, ends[k].edge.index, ends[k + 1].edge.triangle);
-        set_neighbor(ends[k + 1].edge.triangle, ends[k + 1].edge.index, ends[k].edge.triangle);
-      } else if(n > 2) {
-        for(std::size_t j = k; j != l; ++j) set_neighbor(ends[j].edge.triangle, ends[j].edge.index, non_manifold_edge);
+    const std::size_t m = triangles_.size();
+    vertex_begin_.resize(nv); // (written whole below, bucket by bucket)
+    vertex_size_.resize(nv);
+    ids_.resize(3 * m);
+    neighbors_.resize(3 * m);
+    if(nv == 0) return;
+    std::size_t shift = 10;
+    while((nv >> shift) >= most_vertex_buckets) ++shift;
+    const std::size_t buckets = ((nv - 1) >> shift) + 1;
+    const std::size_t block = std::max<std::size_t>(internal::default_block_size,
+                                                    (m + most_triangle_blocks - 1) / most_triangle_blocks);
+    const std::size_t blocks = internal::number_of_blocks(m, block);
+    // place[g * buckets + b]: the corners of block g in bucket b, then where they go
+    std::vector<std::size_t> place(blocks * buckets, 0);
+    internal::for_each_block<ConcurrencyTag>(m, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
+      std::size_t* count = place.data() + g * buckets;
+      for(std::size_t t = begin; t != end; ++t)
+        for(size_type v : triangles_[t]) ++count[v >> shift];
+    });
+    std::vector<std::size_t> bucket_begin(buckets + 1);
+    std::size_t offset = 0;
+    for(std::size_t b = 0; b < buckets; ++b) {
+      bucket_begin[b] = offset;
+      for(std::size_t g = 0; g < blocks; ++g) {
+        const std::size_t here = place[g * buckets + b];
+        place[g * buckets + b] = offset;
+        offset += here;
       }
-      k = l;
     }
+    bucket_begin[buckets] = offset;
+    internal::for_each_block<ConcurrencyTag>(m, block, [&](std::size_t g, std::size_t begin, std::size_t end) {
+      std::size_t* next = place.data() + g * buckets;
+      for(std::size_t t = begin; t != end; ++t)
+        for(size_type v : triangles_[t]) {
+          const std::size_t k = next[v >> shift]++;
+          ids_[k] = static_cast<size_type>(t);
+          neighbors_[k] = v;
+        }
+    });
+    internal::for_each_block<ConcurrencyTag>(buckets, 1, [&](std::size_t b, std::size_t, std::size_t) {
+      const std::size_t first_vertex = b << shift, last_vertex = std::min(nv, (b + 1) << shift);
+      const std::size_t begin = bucket_begin[b], end = bucket_begin[b + 1];
+      std::vector<std::size_t> cursor(last_vertex - first_vertex, 0);
+      for(std::size_t k = begin; k != end; ++k) ++cursor[neighbors_[k] - first_vertex];
+      std::size_t row = begin;
+      for(std::size_t v = first_vertex; v != last_vertex; ++v) {
+        const std::size_t d = cursor[v - first_vertex];
+        vertex_begin_[v] = row;
+        vertex_size_[v] = static_cast<size_type>(d);
+        cursor[v - first_vertex] = row;
+        row += d;
+      }
+      const std::vector<size_type> corners(ids_.begin() + static_cast<std::ptrdiff_t>(begin),
+                                           ids_.begin() + static_cast<std::ptrdiff_t>(end));
+      for(std::size_t k = begin; k != end; ++k) ids_[cursor[neighbors_[k] - first_vertex]++] = corners[k - begin];
+    });
   }
+
+  // the most buckets of vertices and blocks of triangles of `fill_vertex_rows_by_buckets()`: its
+  // table of places has at most their product (256 Ki entries, 2 MiB)
+  static constexpr std::size_t most_vertex_buckets = 4096, most_triangle_blocks = 64;
 
   // Writes the neighbour entries of [first, last), all the copies of one edge.
   void set_group(const Edge* first, const Edge* last)
