@@ -554,7 +554,11 @@ private:
   void join_neighborhoods_concurrently()
   {
     const std::size_t n = candidates_.size();
-    Concurrent_union_find components(n);
+    // (the sets made and handed over by blocks: their first touch and their copy are shared)
+    Concurrent_union_find components(n, Concurrent_union_find::Unset{});
+    for_each_block_of_the_weld(n, [&](std::size_t, std::size_t begin, std::size_t end) {
+      components.make_singletons(begin, end);
+    });
     row_buffer_.resize(n);
     std::mutex buffers_mutex;
     // A new id per call: the buffer a thread remembers belongs to this call only if it holds it.
@@ -594,7 +598,7 @@ private:
         }
         row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
       }, Neighborhood_order::TREE);
-    components.into(components_);
+    components.into(components_, [this](std::size_t size, const auto& f) { for_each_block_of_the_weld(size, f); });
   }
 
   void refuse_same_triangle_pairs()

@@ -112,12 +112,22 @@ public:
   }
   /// the parent of `x` (at most `x`; `x` itself for a root), once every union has returned.
   std::uint32_t parent(std::uint32_t x) const { return parent_[x].load(std::memory_order_relaxed); }
-  /// the sets, once every union has returned, into `uf` (each element linked to its root).
-  void into(Union_find& uf)
+  /// the sets, once every union has returned, into `uf`: the same forest (every parent at most
+  /// its child, so the same roots), its parents copied by `for_each_block(n, f)`, which calls
+  /// `f(block, begin, end)` for blocks covering `[0, n)` (on several threads, say).
+  template <class ForEachBlock>
+  void into(Union_find& uf, const ForEachBlock& for_each_block)
   {
     std::vector<std::uint32_t> parents(size_);
-    for(std::size_t i = 0; i < size_; ++i) parents[i] = find(static_cast<std::uint32_t>(i));
+    for_each_block(size_, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i < end; ++i) parents[i] = parent_[i].load(std::memory_order_relaxed);
+    });
     uf.assign(std::move(parents));
+  }
+  /// the same, on this thread
+  void into(Union_find& uf)
+  {
+    into(uf, [](std::size_t n, const auto& f) { f(0, 0, n); });
   }
 
 private:
