@@ -27,6 +27,13 @@
 // reading the tables of the round (as the pipeline holds them), with the same result.
 // Every parallel result is compared with the 1-thread result (points and triangles): a
 // difference is printed and makes the exit code 1.
+// First, two rows of the machine itself, the ceiling of every phase bound by memory: the same
+// total work on 1 thread and on all threads, split evenly: "streaming reads" sums 1 GiB of
+// 8-byte words read in order; "random reads" follows 8 independent chains a thread through a
+// random cycle of 32 Mi 4-byte entries (128 MiB), as the weld and the tables read a soup whose
+// neighbours lie far apart. On a machine whose cores share a memory system that one core nearly
+// saturates, these speedups stay well below the number of threads, and so do the phases that
+// spend their time waiting for memory.
 //
 // Run: parallel_benchmark [--repetitions R] [path of the soup_topology tool] (R: default 3;
 // the tool: default ../tools/soup_topology beside this program); it needs about 4 GB of memory
@@ -53,6 +60,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,6 +73,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -230,6 +239,51 @@ void measure_steps(const std::string& name, std::size_t threads, const std::vect
   }
 }
 
+// The two rows of the machine (see the top of this file).
+void measure_memory_ceiling(std::size_t threads)
+{
+  const std::size_t words = std::size_t(1) << 27, cycle = std::size_t(1) << 25, steps = std::size_t(1) << 24;
+  std::vector<std::uint64_t> data(words);
+  for(std::size_t i = 0; i < words; ++i) data[i] = i;
+  std::vector<std::uint32_t> next(cycle);
+  {
+    std::vector<std::uint32_t> order(cycle);
+    for(std::size_t i = 0; i < cycle; ++i) order[i] = static_cast<std::uint32_t>(i);
+    std::shuffle(order.begin(), order.end(), std::mt19937(1));
+    for(std::size_t i = 0; i < cycle; ++i) next[order[i]] = order[(i + 1) % cycle];
+  }
+  std::atomic<std::uint64_t> sink{0};
+  // `work(k, n)`: part k of n, on thread k of n
+  const auto on_threads = [](std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+    std::vector<std::thread> team;
+    for(std::size_t k = 0; k < n; ++k) team.emplace_back(work, k, n);
+    for(std::thread& t : team) t.join();
+  };
+  const auto stream = [&](std::size_t k, std::size_t n) {
+    std::uint64_t sum = 0;
+    for(std::size_t i = k * words / n; i < (k + 1) * words / n; ++i) sum += data[i];
+    sink += sum;
+  };
+  const auto chase = [&](std::size_t k, std::size_t n) {
+    constexpr std::size_t chains = 8;
+    std::uint32_t at[chains];
+    for(std::size_t j = 0; j < chains; ++j) at[j] = static_cast<std::uint32_t>((k * chains + j) * 104729 % cycle);
+    for(std::size_t i = 0; i < steps / chains / n; ++i)
+      for(std::size_t j = 0; j < chains; ++j) at[j] = next[at[j]];
+    for(std::size_t j = 0; j < chains; ++j) sink += at[j];
+  };
+  using Work = std::function<void(std::size_t, std::size_t)>;
+  const std::pair<const char*, Work> machine_rows[] = {{"machine: streaming reads of 1 GiB", stream},
+                                                       {"machine: random reads, 8 chains a thread", chase}};
+  for(const auto& [name, work] : machine_rows) {
+    on_threads(1, work);
+    Row r{name, 0, 0};
+    time_interleaved(r, [&] { on_threads(1, work); }, [&] { on_threads(threads, work); });
+    rows.push_back(r);
+    print_row(r, threads);
+  }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -251,6 +305,8 @@ int main(int argc, char** argv)
   const std::size_t threads = all_threads();
   std::printf("parallel_benchmark: %zu threads (TBB's default concurrency), the smallest of %zu interleaved runs "
               "of each side\n", threads, repetitions);
+
+  measure_memory_ceiling(threads);
 
   // The inputs.
   std::vector<Point> points;
