@@ -165,6 +165,14 @@ class Snap_vertices_worker
   using Pair = std::pair<std::uint32_t, std::uint32_t>;
   // a buffer of rows of the tolerance graph (its room reserved in huge pages, see `row_buffer_room`)
   using Row_buffer = Uninitialized_vector<std::uint32_t>;
+  // A buffer of rows in a cache line of its own: the threads of the concurrent join each append
+  // to their own buffer, and two buffers side by side in `rows_` would share the line that holds
+  // their ends (every append of one thread then took the line from the other: the join cost
+  // twice the CPU time on two threads that it cost on one).
+  struct alignas(64) Row_buffer_slot
+  {
+    Row_buffer row;
+  };
   // the octree of the candidates: candidate `c` is the vertex `candidates_[c]`, its point read
   // from the soup's points through that index
   using Candidate_point_map = typename CGAL::Pointer_property_map<Point>::const_type;
@@ -544,7 +552,7 @@ private:
   Row_buffer* start_row_buffer(std::size_t length)
   {
     const std::size_t room = std::min(row_buffer_room, 4 * candidates_.size());
-    Row_buffer& row = rows_.emplace_back();
+    Row_buffer& row = rows_.emplace_back().row;
     row.reserve(std::min(std::max(room, length), std::max(row_buffer_limit, length)));
     return &row;
   }
@@ -738,7 +746,7 @@ private:
     constexpr std::size_t row_ahead = 36, start_ahead = 24, neighbour_ahead = 16, point_ahead = 12, list_ahead = 8,
                           mark_ahead = 4;
     const auto row_of = [&](std::uint32_t v) -> const std::uint32_t* {
-      return rows_[row_buffer_.empty() ? 0 : row_buffer_[v]].data() + row_start_[v];
+      return rows_[row_buffer_.empty() ? 0 : row_buffer_[v]].row.data() + row_start_[v];
     };
     // the first neighbours of visit `v` (at most `most`; none once `v` is assigned): a row and
     // its length, read here, prefetched by the plain loops below
@@ -800,7 +808,7 @@ private:
   {
     tree_.reset();
     std::vector<Point>().swap(candidate_points_);
-    std::deque<Row_buffer>().swap(rows_);
+    std::deque<Row_buffer_slot>().swap(rows_);
     Uninitialized_vector<std::uint32_t>().swap(row_buffer_);
     Uninitialized_vector<std::uint32_t>().swap(row_start_);
     Uninitialized_vector<std::uint32_t>().swap(row_size_);
@@ -824,7 +832,7 @@ private:
         if(d != rep && !assigned_[d] && (collapse_ || mate_of_[candidates_[d]] != rep))
           members.push_back(static_cast<std::uint32_t>(d));
     } else {
-      const Row_buffer& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]];
+      const Row_buffer& row = rows_[row_buffer_.empty() ? 0 : row_buffer_[rep]].row;
       for(std::size_t k = row_start_[rep], end = k + row_size_[rep]; k < end; ++k)
         if(!assigned_[row[k]]) members.push_back(row[k]);
     }
@@ -1269,7 +1277,7 @@ private:
   Union_find components_;                               // of the tolerance graph, until they become `root_`
   bool dense_ = false;
   bool parallel_ = false; // with the tag: the neighborhoods, the clusters and the rebuilt tables in parallel
-  std::deque<Row_buffer> rows_;         // the rows of neighbours, in one buffer per thread
+  std::deque<Row_buffer_slot> rows_;    // the rows of neighbours, in one buffer per thread
   // (the arrays by candidate below are `Uninitialized_vector`s: the search writes every candidate's
   // entry, once each, on the thread that finds its neighbourhood)
   Uninitialized_vector<std::uint32_t> row_buffer_;      // by candidate: the buffer of its row (empty: the first)
