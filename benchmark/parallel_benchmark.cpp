@@ -275,9 +275,10 @@ void measure_memory_ceiling(std::size_t threads)
   using Work = std::function<void(std::size_t, std::size_t)>;
   const std::pair<const char*, Work> machine_rows[] = {{"machine: streaming reads of 1 GiB", stream},
                                                        {"machine: random reads, 8 chains a thread", chase}};
-  for(const auto& [name, work] : machine_rows) {
+  for(const auto& machine_row : machine_rows) {
+    const Work& work = machine_row.second; // (a reference, not a structured binding: lambdas capture it)
     on_threads(1, work);
-    Row r{name, 0, 0};
+    Row r{machine_row.first, 0, 0};
     time_interleaved(r, [&] { on_threads(1, work); }, [&] { on_threads(threads, work); });
     rows.push_back(r);
     print_row(r, threads);

@@ -606,7 +606,7 @@ private:
         }
         row_size_[c] = static_cast<std::uint32_t>(row->size() - row_start_[c]);
       }, Neighborhood_order::TREE);
-    components.into(components_, [this](std::size_t size, const auto& f) { for_each_block_of_the_weld(size, f); });
+    components.into(components_, [&](std::size_t size, const auto& f) { for_each_block_of_the_weld(size, f); });
   }
 
   void refuse_same_triangle_pairs()
