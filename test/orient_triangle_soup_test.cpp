@@ -896,15 +896,7 @@ TEST(OrientTriangleSoup, InPartsAsWhole)
         EXPECT_EQ(r.report.duplicate_triangles, whole.duplicate_triangles);
         EXPECT_EQ(r.report.orientation_flips, whole.orientation_flips);
         EXPECT_EQ(r.report.duplicated_points, whole.duplicated_points);
-        EXPECT_EQ(r.statistics.vertices, measured.vertices);
-        EXPECT_EQ(r.statistics.triangles, measured.triangles);
-        EXPECT_EQ(r.statistics.border_edges, measured.border_edges);
-        EXPECT_EQ(r.statistics.non_manifold_edges, measured.non_manifold_edges);
-        EXPECT_EQ(r.statistics.non_manifold_vertices, measured.non_manifold_vertices);
-        EXPECT_EQ(r.statistics.inconsistent_edges, measured.inconsistent_edges);
-        EXPECT_EQ(r.statistics.components, measured.components);
-        EXPECT_EQ(r.statistics.zero_area_triangles, measured.zero_area_triangles);
-        EXPECT_EQ(r.statistics.closed, measured.closed);
+        EXPECT_EQ(soup_test::statistics_fields(r.statistics), soup_test::statistics_fields(measured));
         if(part_triangles == std::numeric_limits<std::size_t>::max()) {
           EXPECT_EQ(r.parts, 1u);
         }

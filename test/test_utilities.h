@@ -8,6 +8,7 @@
 #define SOUP_TOPOLOGY_TEST_UTILITIES_H
 
 #include <Soup_topology/IO/read_triangle_soup.h>
+#include <Soup_topology/soup_statistics.h>
 
 #include <array>
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <tuple>
 #include <system_error>
 #include <stdexcept>
 #include <string>
@@ -179,6 +181,14 @@ inline std::size_t count_components(const std::vector<std::array<std::size_t, 3>
       }
     }
   return count;
+}
+
+/// every count of `s` in one comparable value: two statistics compared field by field with one
+/// `EXPECT_EQ` (and printed whole when they differ)
+inline auto statistics_fields(const Soup_topology::Soup_statistics& s)
+{
+  return std::make_tuple(s.vertices, s.triangles, s.border_edges, s.non_manifold_edges, s.non_manifold_vertices,
+                         s.inconsistent_edges, s.components, s.zero_area_triangles, s.closed);
 }
 
 /// runs a shell command and returns its standard output and exit code.

@@ -125,6 +125,26 @@ Soup jittered_seams(const std::string& file, std::size_t patches, double relativ
   return Soup{generated.points, generated.triangles};
 }
 
+// The soup of the tool's tests under a memory limit: the elephant subdivided twice (about 90,000
+// triangles) cut into 6 patches whose seams are jittered by 1e-6 of the mesh's diagonal, and
+// that diagonal.
+struct Elephant_seams
+{
+  Soup soup;
+  double diagonal = 0;
+};
+
+Elephant_seams elephant_seam_soup()
+{
+  Soup mesh;
+  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
+  const double d = diagonal(mesh.points);
+  const auto generated = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
+  return Elephant_seams{Soup{generated.points, generated.triangles}, d};
+}
+
 TEST(TiledReconstruction, JitteredSeamsOfRealMeshesForOneToSixtyFourTiles)
 {
   for(const char* file : {"clean/elephant.off", "clean/fandisk.off.xz"}) {
@@ -730,12 +750,7 @@ TEST(TiledReconstruction, ToolWritesTheSameMeshWithTiles)
 // binary STL: the tool reads its number of triangles from the header.
 TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
 {
-  Soup mesh;
-  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  const double d = diagonal(mesh.points);
-  auto soup = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
+  auto [soup, d] = elephant_seam_soup();
   for(Point& p : soup.points) p = soup_test::rounded_to_float(p);
   const std::string folder = soup_test::temporary_folder("tiled_memory");
   const std::string in = folder + "/soup.stl";
@@ -783,12 +798,7 @@ TEST(TiledReconstruction, ToolChoosesTheTilesForAMemoryLimit)
 // whole output needs about 48 MB, its parts of one copy about 36 MB.
 TEST(TiledReconstruction, ToolOrientsTheOutputInPartsUnderAMemoryLimit)
 {
-  Soup mesh;
-  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  const double d = diagonal(mesh.points);
-  const auto copy = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * d, 3);
+  const auto [copy, d] = elephant_seam_soup();
   Soup assembly;
   for(int k = 0; k < 4; ++k) {
     const std::size_t first = assembly.points.size();
@@ -834,11 +844,7 @@ TEST(TiledReconstruction, ToolOrientsTheOutputInPartsUnderAMemoryLimit)
 TEST(TiledReconstruction, ToolWarnsWhenTheSoupIsRepairedWholeUnderAMemoryLimit)
 {
   // (large enough for the limit to choose tiles: the soup of ToolChoosesTheTilesForAMemoryLimit)
-  Soup mesh;
-  soup_test::read_data_mesh("clean/elephant.off", mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  soup_test::subdivide_midpoints(mesh.points, mesh.triangles);
-  const auto seams = soup_test::t_junction_soup(mesh.points, mesh.triangles, 6, 1e-6 * diagonal(mesh.points), 3);
+  const Soup seams = elephant_seam_soup().soup;
   Soup far;
   for(const Point& p : seams.points)
     far.points.emplace_back(std::ldexp(p.x(), -900), std::ldexp(p.y(), -900), std::ldexp(p.z(), -900));
