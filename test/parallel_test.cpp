@@ -340,7 +340,7 @@ TEST(ParallelUnionFind, ConcurrentUnionsGiveTheSequentialSetsAndRoots)
     concurrent.into(by_blocks, [](std::size_t size, const auto& f) {
       ST::internal::for_each_block<Parallel>(size, 1000, f);
     });
-    const std::vector<std::uint32_t> roots = by_blocks.take_roots();
+    const ST::internal::Union_find::Parents roots = by_blocks.take_roots();
     std::size_t different = 0;
     for(std::uint32_t i = 0; i < n; ++i) different += sets.find(i) != expected.find(i) || roots[i] != expected.find(i);
     EXPECT_EQ(different, 0u);

@@ -96,7 +96,7 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
 
   // The components (their roots, then their numbers in the order of their smallest point), and
   // the part of every point, kept in one array.
-  std::vector<std::uint32_t> part_of;
+  Union_find::Parents part_of;
   std::size_t parts = 0;
   {
     Union_find sets(n);
@@ -132,7 +132,7 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
   // One part (one component larger than `part_triangles`, or a soup that fits): oriented in
   // place, as a whole, without a copy of the soup.
   if(parts <= 1) {
-    std::vector<std::uint32_t>().swap(part_of);
+    Union_find::Parents().swap(part_of);
     out.largest_part_triangles = m;
     Soup_orienter<PointRange, TriangleRange, Kernel> orienter(pts, tris, rules, kernel);
     copy_orientation_counts(orienter.template run<ConcurrencyTag>(), out.report);
@@ -243,7 +243,7 @@ Oriented_in_parts orient_triangle_soup_in_parts(PointRange& pts, TriangleRange& 
         part_of_closed.push_back(static_cast<std::uint32_t>(q));
       }
   }
-  std::vector<std::uint32_t>().swap(part_of);
+  Union_find::Parents().swap(part_of);
 
   // The point of a corner: a copy has the coordinates of the point it copies.
   const auto xyz = [&](std::size_t v) {

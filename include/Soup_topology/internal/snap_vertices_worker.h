@@ -359,10 +359,10 @@ private:
       for(size_type v : candidates_) candidate_points_.push_back(point(v));
     }
     find_same_triangle_pairs();
-    components_.reset(n);
-    if(dense_)
+    if(dense_) {
+      components_.reset(n);
       Tolerance_grid<Kernel>(candidate_points_, eps_, kernel_).unite_components(components_);
-    else {
+    } else {
       join_neighborhoods();
       // Without a dense cluster the clusters read the rows and the points only: the octree (a
       // copy of the candidates' points, its indices and nodes) goes before they allocate, and
@@ -485,10 +485,11 @@ private:
     row_buffer_.clear();
     if constexpr(std::is_same<FT, double>::value) {
       if(parallel_) {
-        join_neighborhoods_concurrently();
+        join_neighborhoods_concurrently(); // (its sets replace `components_` whole)
         return;
       }
     }
+    components_.reset(n);
     Row_buffer* row = start_row_buffer(0);
     std::vector<char> mate(points_.size(), 0);
     auto mark_mates = [&](std::size_t c, char value) {
@@ -1288,7 +1289,7 @@ private:
   Uninitialized_vector<std::uint32_t> visits_;          // the clusters' visits: by component, each sorted
   Uninitialized_vector<size_type> target_;              // representative of a merged vertex, or none
   Uninitialized_vector<std::uint32_t> candidate_of_;    // by vertex: its candidate, or not_candidate
-  std::vector<std::uint32_t> root_;                     // by candidate: the root of its component
+  Union_find::Parents root_;                            // by candidate: the root of its component
   Uninitialized_vector<std::uint32_t> mate_of_;         // vertices sharing a triangle with the representative
   Uninitialized_vector<char> assigned_;                 // by candidate (one byte each: written by blocks in parallel)
   Uninitialized_vector<std::uint32_t> component_size_, largest_cluster_;

@@ -8,6 +8,8 @@
 #ifndef SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
 #define SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
 
+#include <Soup_topology/internal/uninitialized_vector.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -20,11 +22,15 @@ namespace Soup_topology {
 namespace internal {
 
 /// union-find over 32-bit ids; the root of a set is its smallest id, so the sets (and their
-/// roots) do not depend on the order of the unions.
+/// roots) do not depend on the order of the unions. Its parents are an `Uninitialized_vector`:
+/// written once each by `reset()` (or handed over whole by `assign()`), not zeroed before.
 class Union_find
 {
 public:
-  explicit Union_find(std::size_t n = 0) : parent_(n) { reset(n); }
+  /// the parents, the roots of `take_roots()`
+  using Parents = Uninitialized_vector<std::uint32_t>;
+
+  explicit Union_find(std::size_t n = 0) { reset(n); }
   void reset(std::size_t n)
   {
     parent_.resize(n);
@@ -45,17 +51,17 @@ public:
   }
   /// takes the sets of `parents`, a forest whose every parent is at most its child (so that the
   /// root of a set is its smallest element, as `unite()` leaves it).
-  void assign(std::vector<std::uint32_t>&& parents) { parent_ = std::move(parents); }
+  void assign(Parents&& parents) { parent_ = std::move(parents); }
   /// the root of every element, `roots[x] == find(x)`, in the storage of the sets (left empty).
   /// One pass in increasing order: a parent is smaller than its child, so it holds its root already.
-  std::vector<std::uint32_t> take_roots()
+  Parents take_roots()
   {
     for(std::size_t x = 0; x < parent_.size(); ++x) parent_[x] = parent_[parent_[x]];
     return std::move(parent_);
   }
 
 private:
-  std::vector<std::uint32_t> parent_;
+  Parents parent_;
 };
 
 /// The sets of `Union_find`, united by several threads at once. A root is linked under the
@@ -115,10 +121,12 @@ public:
   /// the sets, once every union has returned, into `uf`: the same forest (every parent at most
   /// its child, so the same roots), its parents copied by `for_each_block(n, f)`, which calls
   /// `f(block, begin, end)` for blocks covering `[0, n)` (on several threads, say).
+  /// (The copy is not zeroed first: its every entry is written by the blocks, which also take
+  /// the first touch of its pages.)
   template <class ForEachBlock>
   void into(Union_find& uf, const ForEachBlock& for_each_block)
   {
-    std::vector<std::uint32_t> parents(size_);
+    Union_find::Parents parents(size_);
     for_each_block(size_, [&](std::size_t, std::size_t begin, std::size_t end) {
       for(std::size_t i = begin; i < end; ++i) parents[i] = parent_[i].load(std::memory_order_relaxed);
     });
