@@ -950,6 +950,69 @@ TEST(SnapVertices, Issue19VisitorIsCopiedUnlessGivenByReference)
   EXPECT_EQ(t1, t2);
 }
 
+// Issue 14: the merges of a weld that rebuilds its tables are told by blocks when the visitor
+// takes them in any order (the default one), on one thread in index order to any other visitor;
+// both give the same report, to the bit of the largest displacement, and the same soup. A visitor
+// that says it takes them in any order (`tells_merges_concurrently`) is told of every merge once.
+struct Merge_recording_visitor
+{
+  std::vector<std::size_t>* representative_of = nullptr; // by duplicate
+  void on_merge(std::size_t duplicate, std::size_t representative) { (*representative_of)[duplicate] = representative; }
+  void on_refusal(std::size_t, std::size_t, ST::Refusal_reason) {}
+};
+struct Merge_recording_visitor_in_any_order : Merge_recording_visitor
+{
+  static constexpr bool tells_merges_concurrently = true;
+};
+
+TEST(SnapVertices, Issue14MergesToldByBlocksGiveTheReportOfTheVisitorsLoop)
+{
+  static_assert(ST::internal::tells_merges_concurrently<ST::Default_snap_visitor>::value, "");
+  static_assert(!ST::internal::tells_merges_concurrently<Merge_recording_visitor>::value, "");
+  static_assert(ST::internal::tells_merges_concurrently<Merge_recording_visitor_in_any_order>::value, "");
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  soup_test::read_data_mesh("clean/fandisk.off.xz", points, triangles);
+  const double diag = ST::internal::bounding_box_diagonal(points, CGAL::Identity_property_map<Point>());
+  const auto soup = portable_jittered_soup(points, triangles, 0.6e-6 * diag, 19);
+  std::vector<Point> p;
+  std::vector<Triangle> t;
+  ST::index_triangles(soup, p, t);
+  const auto np = CGAL::parameters::snapping_tolerance(1e-6 * diag);
+  const auto run = [&](const auto& parameters, auto tag) {
+    Weld_result w;
+    w.points = p;
+    w.triangles = t;
+    Tables tables(w.triangles, w.points.size());
+    w.report = ST::snap_vertices<decltype(tag)>(w.points, w.triangles, tables, parameters);
+    return w;
+  };
+  std::vector<std::size_t> told(p.size(), std::size_t(-1)), told_in_any_order(p.size(), std::size_t(-1));
+  Merge_recording_visitor in_order;
+  in_order.representative_of = &told;
+  Merge_recording_visitor_in_any_order any_order;
+  any_order.representative_of = &told_in_any_order;
+  const Weld_result expected = run(np.visitor(std::ref(in_order)), CGAL::Sequential_tag());
+  ASSERT_GT(expected.report.merged_vertices, t.size() / 16 + 64); // (the tables are rebuilt)
+  EXPECT_EQ(std::size_t(std::count_if(told.begin(), told.end(), [](std::size_t r) { return r != std::size_t(-1); })),
+            expected.report.merged_vertices);
+  const auto bits = [](double x) {
+    std::uint64_t b = 0;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  const auto same = [&](const Weld_result& w) {
+    EXPECT_EQ(w.report.merged_vertices, expected.report.merged_vertices);
+    EXPECT_EQ(w.report.clusters, expected.report.clusters);
+    EXPECT_EQ(bits(w.report.max_displacement), bits(expected.report.max_displacement));
+    EXPECT_EQ(w.triangles, expected.triangles);
+  };
+  same(run(np, CGAL::Sequential_tag()));
+  same(run(np, CGAL::Parallel_if_available_tag()));
+  same(run(np.visitor(std::ref(any_order)), CGAL::Parallel_if_available_tag()));
+  EXPECT_EQ(told_in_any_order, told);
+}
+
 // Issue 13: soups on which each cancellation of the guard makes one more cancellation necessary,
 // so that the guard needs one pass per link of the chain. The indices of the vertices of link i
 // are given by the functions below, for the expected decisions.

@@ -100,6 +100,18 @@ CGAL::Comparison_result compare_distances(const Point& p, const Point& q, const 
   return compare_distance(p, q, r);
 }
 
+/// whether `Visitor` may be told of the merges of one weld from several threads at once and in
+/// any order: its `on_merge(duplicate, representative)` writes what belongs to `duplicate` alone,
+/// and what it keeps does not depend on the order of the calls. True of `Default_snap_visitor`;
+/// a visitor type says so with a member `static constexpr bool tells_merges_concurrently = true`.
+/// (A caller's visitor is otherwise told of the merges on one thread, in increasing order of the
+/// duplicates.)
+template <class Visitor, class = void>
+struct tells_merges_concurrently : std::is_same<Visitor, Default_snap_visitor> {};
+template <class Visitor>
+struct tells_merges_concurrently<Visitor, std::void_t<decltype(Visitor::tells_merges_concurrently)>>
+  : std::integral_constant<bool, Visitor::tells_merges_concurrently> {};
+
 /// the `visitor` parameter of `snap_vertices()`, held safely: a copy of the visitor given (or a
 /// `Default_snap_visitor`), or a reference to it when it is given as `std::ref(v)`.
 template <class NamedParameters>
@@ -997,12 +1009,17 @@ private:
   // collapses, around the clusters that lost a member) rather than every touched triangle.
   void guard_against_degenerate_and_flipped_triangles()
   {
-    std::vector<char> is_touched(tables_.number_of_triangles(), 0);
-    for(size_type v : candidates_)
-      if(target_[v] != none)
-        for(size_type t : tables_.triangles_around_vertex(v)) is_touched[t] = 1;
-    for(size_type t = 0; t < tables_.number_of_triangles(); ++t)
-      if(is_touched[t]) touched_.push_back(t);
+    // The triangles around a moved vertex: those with a corner that moves (only candidates do),
+    // found by blocks of the weld, in increasing order.
+    std::vector<std::vector<size_type>> touched_by_block(number_of_blocks(tables_.number_of_triangles()));
+    for_each_block_of_the_weld(tables_.number_of_triangles(), [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t != end; ++t) {
+        const Adjacency_tables::Triangle& tr = tables_.triangle(static_cast<size_type>(t));
+        if(target_[tr[0]] != none || target_[tr[1]] != none || target_[tr[2]] != none)
+          touched_by_block[b].push_back(static_cast<size_type>(t));
+      }
+    });
+    concatenate_in_block_order(touched_by_block, touched_);
     do {
       while(cancel_failing_moves()) {}
     } while(collapse_ && cancel_uncovered_collapses());
@@ -1050,7 +1067,8 @@ private:
   bool cancel_failing_moves()
   {
     cancelled_.clear();
-    auto check = [&](size_type t) {
+    // (`cancelled` receives the moves to cancel; they are sorted before they are told)
+    auto check = [&](size_type t, std::vector<std::pair<size_type, Refusal_reason>>& cancelled) {
       const Adjacency_tables::Triangle& tr = tables_.triangle(t);
       const size_type n0 = final_vertex(tr[0]), n1 = final_vertex(tr[1]), n2 = final_vertex(tr[2]);
       if(n0 == tr[0] && n1 == tr[1] && n2 == tr[2]) return;
@@ -1061,16 +1079,22 @@ private:
       if(moves_keep_triangle(point(tr[0]), point(tr[1]), point(tr[2]), point(n0), point(n1), point(n2), kernel_, why))
         return;
       for(size_type v : tr)
-        if(target_[v] != none) cancelled_.emplace_back(v, why);
+        if(target_[v] != none) cancelled.emplace_back(v, why);
     };
     if(!moves_checked_) {
+      // every triangle touched, by blocks of the weld
       moves_checked_ = true;
-      for(size_type t : touched_) check(t);
+      std::vector<std::vector<std::pair<size_type, Refusal_reason>>> cancelled_by_block(
+        number_of_blocks(touched_.size()));
+      for_each_block_of_the_weld(touched_.size(), [&](std::size_t b, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i != end; ++i) check(touched_[i], cancelled_by_block[b]);
+      });
+      concatenate_in_block_order(cancelled_by_block, cancelled_);
     } else {
       ++pass_id_;
       for(size_type v : cancelled_since_moves_check_)
         for(size_type t : tables_.triangles_around_vertex(v))
-          if(mark_for_pass(t)) check(t);
+          if(mark_for_pass(t)) check(t, cancelled_);
     }
     cancelled_since_moves_check_.clear();
     // A vertex cancelled by several triangles is counted once, with the first reason in vertex order.
@@ -1172,9 +1196,12 @@ private:
   // order, and the tables are rebuilt: the neighbours of a removed triangle are linked across it.
   void apply()
   {
+    std::vector<std::size_t> merges_by_block(number_of_blocks(candidates_.size()), 0);
+    for_each_block_of_the_weld(candidates_.size(), [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i) merges_by_block[g] += target_[candidates_[i]] != none ? 1 : 0;
+    });
     std::size_t number_of_merges = 0;
-    for(size_type v : candidates_)
-      if(target_[v] != none) ++number_of_merges;
+    for(std::size_t m : merges_by_block) number_of_merges += m;
     if(collapse_) count_collapses();
     const bool rebuild = number_of_merges > tables_.number_of_triangles() / 16 + 64 || !collapsed_.empty();
     if(rebuild) {
@@ -1202,6 +1229,13 @@ private:
         tables_ = Adjacency_tables(rewritten, points_.size());
     }
     const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
+    if constexpr(tells_merges_concurrently<Visitor>::value) {
+      if(rebuild) {
+        tell_merges_by_blocks(number_of_merges);
+        report_.border_edges_after = tables_.number_of_border_edges();
+        return;
+      }
+    }
     std::vector<char> is_representative(points_.size(), 0);
     // (the representatives' points are read at random when the triangles come in no spatial
     // order: a few merges ahead, they are asked for)
@@ -1224,6 +1258,40 @@ private:
         std::max(report_.max_displacement, std::sqrt(CGAL::to_double(squared_distance(point(v), point(r)))));
     }
     report_.border_edges_after = tables_.number_of_border_edges();
+  }
+
+  // The merges told to a visitor that takes them in any order (`tells_merges_concurrently`),
+  // once the tables are rebuilt (none is updated here), by blocks of the weld: the counts and the
+  // largest displacement are those of the loop of `apply()` (a count and a maximum do not depend
+  // on the order). A representative is counted by the one merge that marks it first (a relaxed
+  // exchange on a byte of its own).
+  void tell_merges_by_blocks(std::size_t number_of_merges)
+  {
+    const typename Kernel::Compute_squared_distance_3 squared_distance = kernel_.compute_squared_distance_3_object();
+    std::unique_ptr<std::atomic<unsigned char>[]> is_representative(new std::atomic<unsigned char>[points_.size()]);
+    for_each_block_of_the_weld(points_.size(), [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t v = begin; v != end; ++v) is_representative[v].store(0, std::memory_order_relaxed);
+    });
+    const std::size_t blocks = number_of_blocks(candidates_.size());
+    std::vector<std::size_t> clusters(blocks, 0);
+    std::vector<double> largest(blocks, 0.);
+    for_each_block_of_the_weld(candidates_.size(), [&](std::size_t g, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i) {
+        const size_type v = candidates_[i];
+        if(target_[v] == none) continue;
+        const size_type r = target_[v];
+        visitor_.on_merge(v, r);
+        if(is_representative[r].load(std::memory_order_relaxed) == 0 &&
+           is_representative[r].exchange(1, std::memory_order_relaxed) == 0)
+          ++clusters[g];
+        largest[g] = std::max(largest[g], std::sqrt(CGAL::to_double(squared_distance(point(v), point(r)))));
+      }
+    });
+    report_.merged_vertices += number_of_merges;
+    for(std::size_t g = 0; g < blocks; ++g) {
+      report_.clusters += clusters[g];
+      report_.max_displacement = std::max(report_.max_displacement, largest[g]);
+    }
   }
 
   // The triangles removed (in increasing order) and the pairs of vertices of one triangle

@@ -47,19 +47,38 @@ struct Tolerance_grid_frame
   /// the frame for the points of approximate coordinates `coordinates(i)`, i < n, and the tolerance `e`.
   template <class Coordinates>
   Tolerance_grid_frame(std::size_t n, const Coordinates& coordinates, double e)
+    : Tolerance_grid_frame(n, coordinates, e, CGAL::Sequential_tag())
+  {}
+
+  /// the same, the box of the points taken by blocks on TBB's threads with a parallel
+  /// `ConcurrencyTag`: each block's box, then the boxes in block order, by the same comparisons
+  /// (of equal extreme coordinates the first is kept, even the sign of a zero): the same frame.
+  template <class Coordinates, class ConcurrencyTag>
+  Tolerance_grid_frame(std::size_t n, const Coordinates& coordinates, double e, ConcurrencyTag)
   {
     if(n == 0) return;
     if(!(e > 0) || !std::isfinite(e)) return;
-    std::array<double, 3> lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                              std::numeric_limits<double>::infinity()}};
-    std::array<double, 3> hi{{-lo[0], -lo[1], -lo[2]}};
-    for(std::size_t i = 0; i < n; ++i) {
-      const std::array<double, 3> c = coordinates(i);
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    using Box = std::array<std::array<double, 3>, 2>; // lowest, highest
+    const auto add = [](Box& box, const std::array<double, 3>& c) {
       for(std::size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], c[k]);
-        hi[k] = std::max(hi[k], c[k]);
+        box[0][k] = std::min(box[0][k], c[k]);
+        box[1][k] = std::max(box[1][k], c[k]);
       }
-    }
+    };
+    const Box empty{{{{infinity, infinity, infinity}}, {{-infinity, -infinity, -infinity}}}};
+    std::vector<Box> boxes(number_of_blocks(n), empty);
+    for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t i = begin; i != end; ++i) add(boxes[b], coordinates(i));
+    });
+    Box box = empty;
+    for(const Box& b : boxes)
+      for(std::size_t k = 0; k < 3; ++k) {
+        box[0][k] = std::min(box[0][k], b[0][k]);
+        box[1][k] = std::max(box[1][k], b[1][k]);
+      }
+    const std::array<double, 3>& lo = box[0];
+    const std::array<double, 3>& hi = box[1];
     double magnitude = 0, extent = 0;
     for(std::size_t k = 0; k < 3; ++k) {
       magnitude = std::max({magnitude, std::abs(lo[k]), std::abs(hi[k])});
@@ -101,7 +120,7 @@ template <class ConcurrencyTag = CGAL::Sequential_tag, class PointOf, class FT>
 std::size_t largest_tolerance_cell(std::size_t n, const PointOf& point_of, const FT& eps)
 {
   const Tolerance_grid_frame frame(n, [&](std::size_t i) { return approximate_coordinates(point_of(i)); },
-                                   CGAL::to_double(eps));
+                                   CGAL::to_double(eps), ConcurrencyTag());
   if(!frame.usable) return 0;
   std::size_t largest = 1;
   constexpr std::int64_t packed_limit = std::int64_t(1) << 21;
