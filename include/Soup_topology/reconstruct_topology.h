@@ -24,6 +24,7 @@
 #include <Soup_topology/internal/soup_self_intersections.h>
 #include <Soup_topology/internal/tolerance.h>
 #include <Soup_topology/internal/triangulate_polygon.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/Kernel_traits.h>
 #include <CGAL/Named_function_parameters.h>
@@ -36,11 +37,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -124,24 +127,43 @@ template <class T, class Tag, class Base>
 struct is_named_parameters<CGAL::Named_function_parameters<T, Tag, Base>> : std::true_type {};
 
 /// removes the points no triangle uses and renumbers the triangles; returns the new index of
-/// every old point (or -1).
-template <class PointRange, class TriangleRange>
-std::vector<std::uint32_t> remove_unreferenced_points(PointRange& points, TriangleRange& triangles)
+/// every old point (or -1). With a parallel `ConcurrencyTag` the marks, the new indices and the
+/// renumbering run by blocks on TBB's threads (the points keep their order: the result is that
+/// of one thread); the points are moved down on this thread, in place.
+template <class ConcurrencyTag = CGAL::Sequential_tag, class PointRange, class TriangleRange>
+Uninitialized_vector<std::uint32_t> remove_unreferenced_points(PointRange& points, TriangleRange& triangles)
 {
   constexpr std::uint32_t unused = static_cast<std::uint32_t>(-1);
-  std::vector<std::uint32_t> new_index(points.size(), unused);
-  for(const auto& f : triangles)
-    for(const auto& v : f) new_index[static_cast<std::size_t>(v)] = 0;
-  std::uint32_t kept = 0;
-  for(std::size_t i = 0; i < points.size(); ++i)
-    if(new_index[i] == 0) {
-      new_index[i] = kept;
-      if(kept != i) points[kept] = points[i];
-      ++kept;
-    }
+  const std::size_t n = points.size(), m = triangles.size();
+  const auto triangle = [&triangles](std::size_t t) -> auto& {
+    return *(triangles.begin() + static_cast<std::ptrdiff_t>(t));
+  };
+  // whether a triangle uses each point: two triangles of two blocks may mark one point at once,
+  // hence bytes written atomically (relaxed: read after the blocks have joined)
+  std::unique_ptr<std::atomic<unsigned char>[]> used(new std::atomic<unsigned char>[n]);
+  for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t i = begin; i != end; ++i) used[i].store(0, std::memory_order_relaxed);
+  });
+  for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t t = begin; t != end; ++t)
+      for(const auto& v : triangle(t)) used[static_cast<std::size_t>(v)].store(1, std::memory_order_relaxed);
+  });
+  Uninitialized_vector<std::uint32_t> new_index(n); // (written whole below)
+  for_each_block<ConcurrencyTag>(n, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t i = begin; i != end; ++i) new_index[i] = unused;
+  });
+  const std::size_t kept = compact_in_order<ConcurrencyTag>(
+    n, [&](std::size_t i) { return used[i].load(std::memory_order_relaxed) != 0; },
+    [&](std::size_t i, std::size_t position) { new_index[i] = static_cast<std::uint32_t>(position); });
+  used.reset();
+  // (a point moves down to a place no later point is read from)
+  for(std::size_t i = 0; i < n; ++i)
+    if(new_index[i] != unused && new_index[i] != i) points[new_index[i]] = points[i];
   points.resize(kept);
-  for(auto& f : triangles)
-    for(auto& v : f) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+  for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for(std::size_t t = begin; t != end; ++t)
+      for(auto& v : triangle(t)) v = static_cast<std::decay_t<decltype(v)>>(new_index[static_cast<std::size_t>(v)]);
+  });
   return new_index;
 }
 
@@ -175,7 +197,12 @@ inline std::size_t input_point_index(const std::vector<std::uint32_t>& input_ind
 template <class User_visitor>
 struct Pipeline_visitor
 {
-  std::vector<std::uint32_t>* merged_into;
+  // (a merge writes the entry of its duplicate only: the merges may be told on several threads
+  // when the caller's visitor allows it)
+  static constexpr bool tells_merges_concurrently =
+    ::Soup_topology::internal::tells_merges_concurrently<User_visitor>::value;
+
+  Uninitialized_vector<std::uint32_t>* merged_into;
   const std::vector<std::uint32_t>* input_index;
   User_visitor* user;
   std::size_t in(std::size_t k) const { return input_point_index(*input_index, k); }
@@ -369,8 +396,13 @@ private:
   void run_rounds(const WeldNamedParameters& weld_np, std::size_t max_rounds, bool do_split, Small_features policy,
                   User_visitor& user_visitor, Phase_observer& observer)
   {
+    // (by blocks, on TBB's threads with the tag: they share the first touch of its pages)
     merged_into_.resize(pts_.size());
-    for(std::size_t i = 0; i < merged_into_.size(); ++i) merged_into_[i] = static_cast<std::uint32_t>(i);
+    for_each_block<ConcurrencyTag>(merged_into_.size(), default_block_size,
+                                   [&](std::size_t, std::size_t begin, std::size_t end) {
+                                     for(std::size_t i = begin; i < end; ++i)
+                                       merged_into_[i] = static_cast<std::uint32_t>(i);
+                                   });
     Pipeline_visitor<User_visitor> recorder{&merged_into_, &input_index_, &user_visitor};
     // A vertex that received welds is never moved in a later round (its welded points would
     // move farther than the tolerance); it may still receive more.
@@ -425,7 +457,7 @@ public:
       return std::sqrt(CGAL::to_double(squared_distance(pts_[v], pts_[w])));
     });
     report_.max_displacement = std::max(report_.max_displacement, largest);
-    std::vector<std::uint32_t>().swap(merged_into_);
+    Uninitialized_vector<std::uint32_t>().swap(merged_into_);
   }
 
   /// the final counts, from the live tables (removing unused points changes none of them), then
@@ -449,16 +481,17 @@ public:
     report_.degenerate_triangles_after = collinear_triangles.size();
     tables_.reset();
     const std::size_t before = pts_.size();
-    const std::vector<std::uint32_t> kept_index = remove_unreferenced_points(pts_, triangles_);
-    if(input_index_.empty()) {
-      input_index_.resize(pts_.size());
-      for(std::size_t i = 0; i < kept_index.size(); ++i)
-        if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = static_cast<std::uint32_t>(i);
-    } else {
-      for(std::size_t i = 0; i < kept_index.size(); ++i)
-        if(kept_index[i] != static_cast<std::uint32_t>(-1)) input_index_[kept_index[i]] = input_index_[i];
-      input_index_.resize(pts_.size());
-    }
+    const Uninitialized_vector<std::uint32_t> kept_index = remove_unreferenced_points<ConcurrencyTag>(pts_, triangles_);
+    // the input index of every point kept (each written once: by blocks on TBB's threads with
+    // the tag, into a new array)
+    std::vector<std::uint32_t> kept_input_index(pts_.size());
+    for_each_block<ConcurrencyTag>(
+      kept_index.size(), default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i != end; ++i)
+          if(kept_index[i] != static_cast<std::uint32_t>(-1))
+            kept_input_index[kept_index[i]] = static_cast<std::uint32_t>(input_point_index(input_index_, i));
+      });
+    input_index_.swap(kept_input_index);
     report_.removed_points = before - pts_.size();
     report_.output_points = pts_.size();
     report_.output_triangles = triangles_.size();
@@ -510,7 +543,7 @@ private:
   std::vector<std::uint32_t>& input_index_;
   const Geom_traits& gt_;
   std::optional<Adjacency_tables> tables_;
-  std::vector<std::uint32_t> merged_into_;
+  Uninitialized_vector<std::uint32_t> merged_into_;
   std::vector<FT> tolerances_;  // per point (`vertex_tolerance_map`), or empty: one tolerance
   Reconstruction_report report_;
 };

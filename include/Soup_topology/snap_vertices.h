@@ -230,7 +230,8 @@ Snap_report snap_vertices(const PointRange& points, TriangleRange& triangles, Ad
   std::vector<typename NP_helper::Point> point_storage;
   const auto& given_points = NP_helper::points_as_vector(points, np, point_storage);
   const int exponent = internal::moderate_scale_exponent_of<ConcurrencyTag>(given_points);
-  FT eps = NP_helper::checked_tolerance("snap_vertices", points, triangles, tables, np, exponent);
+  FT eps =
+    NP_helper::template checked_tolerance<ConcurrencyTag>("snap_vertices", points, triangles, tables, np, exponent);
   // Per-vertex tolerances: every pair is decided with the smaller of its two; `eps`, the largest,
   // bounds the searches.
   std::vector<FT> tolerance_storage;

@@ -191,7 +191,8 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
   std::vector<typename NP_helper::Point> point_storage;
   const auto& given_points = NP_helper::points_as_vector(points, np, point_storage);
   const int exponent = internal::moderate_scale_exponent_of<ConcurrencyTag>(given_points);
-  FT eps = NP_helper::checked_tolerance("split_t_junctions", points, triangles, tables, np, exponent);
+  FT eps =
+    NP_helper::template checked_tolerance<ConcurrencyTag>("split_t_junctions", points, triangles, tables, np, exponent);
   // Per-vertex tolerances: a vertex and a segment are decided with the smallest tolerance of the
   // three points; `eps`, the largest, bounds the searches.
   std::vector<FT> tolerance_storage;

@@ -293,8 +293,9 @@ struct Soup_np_helper
   }
   /// checks the points (finite) and the tables (they describe `triangles` over `points`), then
   /// returns the tolerance, times 2^exponent (see `resolve_tolerance()`); throws `Invalid_input`
-  /// naming `function` otherwise.
-  template <class TriangleRange>
+  /// naming `function` otherwise. (The points are checked by blocks on TBB's threads with a
+  /// parallel `ConcurrencyTag`, as `check_finite_points()` does: the same point is named.)
+  template <class ConcurrencyTag = CGAL::Sequential_tag, class TriangleRange>
   static FT checked_tolerance(const char* function, const PointRange& points, const TriangleRange& triangles,
                               const Adjacency_tables& tables, const NamedParameters& np, int exponent = 0)
   {
@@ -305,7 +306,7 @@ struct Soup_np_helper
                           std::to_string(points.size()) + " points and " + std::to_string(triangles.size()) +
                           " triangles in the soup)");
     const Point_map pm = get_point_map(np);
-    check_finite_points(points, pm);
+    check_finite_points<ConcurrencyTag>(points, pm);
     return resolve_tolerance<FT>(points, pm, np, exponent);
   }
 };
