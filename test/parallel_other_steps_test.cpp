@@ -595,7 +595,23 @@ TEST(ParallelOctree, BuildGivesTheSequentialTree)
   std::mt19937 rng(5);
   for(int i = 0; i < 50000; ++i)
     small.emplace_back(i % 7 == 0 ? -0.0 : double(rng() % 100), i % 11 == 0 ? 0.0 : double(rng() % 3), double(rng() % 1000) / 7);
-  for(const std::vector<Point>* points : {&soup.points, static_cast<const std::vector<Point>*>(&small)}) {
+  // The nodes split by subtrees: three tight clusters and a few points far apart, whose 64
+  // subtrees are found deep below chains of single nodes; three small clusters, which never give
+  // 64 subtrees at one level (the subtrees are those of the deepest level with nodes to split);
+  // a few points, one leaf (no subtree).
+  const auto clustered = [&](int size) {
+    std::vector<Point> out;
+    for(int c = 0; c < 3; ++c)
+      for(int i = 0; i < size; ++i)
+        out.emplace_back(c + 1e-7 * double(rng() % 1000), 2 * c + 1e-7 * double(rng() % 1000),
+                         1e-7 * double(rng() % 1000));
+    for(int i = 0; i < 5; ++i) out.emplace_back(100.0 * i, -50.0, 3.0 * i);
+    return out;
+  };
+  const std::vector<Point> clusters = clustered(4000), small_clusters = clustered(40);
+  const std::vector<Point> one_leaf(small.begin(), small.begin() + 7);
+  const std::vector<Point>& small_cloud = small;
+  for(const std::vector<Point>* points : {&soup.points, &small_cloud, &clusters, &small_clusters, &one_leaf}) {
     SCOPED_TRACE(points->size());
     const ST::Octree<Epick> expected(*points);
     const ST::Octree<Epick> expected_np(*points, ST::parameters::bucket_capacity(32));

@@ -336,7 +336,8 @@ public:
       // The leaves in traversal (Morton) order, cut into groups of about 2048 points; a batch of
       // groups is searched in parallel, each group into its own buffer, then the callbacks of the
       // batch are made in order.
-      const Leaf_groups leaf_groups = leaves_in_groups([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
+      const Leaf_groups leaf_groups =
+        leaves_in_groups<ConcurrencyTag>([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
       constexpr std::size_t batch = 64;
       const std::size_t groups = leaf_groups.size();
       struct Found
@@ -357,7 +358,7 @@ public:
           out.point.clear();
           Join_scratch scratch;
           for(std::size_t l = leaf_groups.begin[first + g]; l != leaf_groups.begin[first + g + 1]; ++l)
-            leaf_neighborhoods(nodes_[leaf_groups.leaves[l].second], r2, scratch,
+            leaf_neighborhoods(nodes_[leaf_groups.leaves[l].node], r2, scratch,
                                [&](std::uint32_t k, const std::vector<std::size_t>& near) {
                                  out.near.insert(out.near.end(), near.begin(), near.end());
                                  out.end.push_back(out.near.size());
@@ -484,11 +485,12 @@ public:
       if(empty())
         return;
       const FT r2 = radius * radius;
-      const Leaf_groups groups = leaves_in_groups([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
+      const Leaf_groups groups =
+        leaves_in_groups<ConcurrencyTag>([](const Node& nd) { return std::size_t(nd.end - nd.begin); });
       internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
         Join_scratch scratch;
         for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
-          leaf_neighborhoods(nodes_[groups.leaves[l].second], r2, scratch,
+          leaf_neighborhoods(nodes_[groups.leaves[l].node], r2, scratch,
                              [&](std::uint32_t k, const std::vector<std::size_t>& near) {
                                callback(std::size_t(ids_[k]), near);
                              }, order);
@@ -522,13 +524,13 @@ public:
       const Segments_by_first_end by_first = segments_by_first_end(segments);
       if(by_first.order.empty())
         return;
-      const Leaf_groups groups = leaves_in_groups([&](const Node& nd) {
+      const Leaf_groups groups = leaves_in_groups<ConcurrencyTag>([&](const Node& nd) {
         return by_first.bucket[nd.end] - by_first.bucket[nd.begin];
       });
       internal::for_each_block<ConcurrencyTag>(groups.size(), 1, [&](std::size_t g, std::size_t, std::size_t) {
         Segment_scratch scratch;
         for(std::size_t l = groups.begin[g]; l != groups.begin[g + 1]; ++l)
-          segments_of_leaf(groups.leaves[l].first, nodes_[groups.leaves[l].second], by_first, radius, scratch, callback,
+          segments_of_leaf(groups.leaves[l], nodes_[groups.leaves[l].node], by_first, radius, scratch, callback,
                            order);
       });
     }
@@ -1193,24 +1195,76 @@ private:
 
   // The leaves in traversal (Morton) order, cut into groups of about `group_weight` of
   // `weight(leaf)` each: the blocks of the concurrent searches (they do not depend on the number
-  // of threads).
+  // of threads). A leaf is known by its frame (which names its node).
   struct Leaf_groups
   {
-    std::vector<std::pair<Frame, Node_index>> leaves;
+    internal::Uninitialized_vector<Frame> leaves;
     std::vector<std::size_t> begin; // group g holds leaves[begin[g]], ..., leaves[begin[g + 1] - 1]
     std::size_t size() const { return begin.size() - 1; }
   };
-  template <typename Weight>
+
+  // the smallest number of subtrees `leaves_in_groups()` looks for below its level
+  static constexpr std::size_t leaf_listing_subtrees = 64;
+
+  // With a parallel `ConcurrencyTag` and more than one thread allowed, the leaves are listed by
+  // subtrees on TBB's threads: the inner nodes of the first level with
+  // `leaf_listing_subtrees` of them (or of the deepest level with any), and the leaves above that
+  // level, in traversal order; the leaves of each subtree counted, then written at their places
+  // in the list (sized once): the sequential list.
+  template <typename ConcurrencyTag, typename Weight>
   Leaf_groups leaves_in_groups(const Weight& weight, std::size_t group_weight = 2048) const
   {
     Leaf_groups out;
-    traverse([](const Frame&, double&) { return true; }, [&](const Frame& f, const Node& nd) {
-      out.leaves.emplace_back(f, static_cast<Node_index>(&nd - nodes_.data()));
-    });
+    const auto is_inner = [&](const Frame& f) { return nodes_[f.node].first_child != 0; };
+    if(!internal::runs_on_several_threads<ConcurrencyTag>())
+      traverse([](const Frame&, double&) { return true; },
+               [&](const Frame& f, const Node&) { out.leaves.push_back(f); });
+    else
+    {
+      std::vector<Frame> starts;
+      for(std::uint32_t level = 1;; ++level)
+      {
+        std::vector<Frame> found;
+        std::size_t inner = 0;
+        traverse(
+          [&](const Frame& f, double&) {
+            if(nodes_[f.node].level < level || !is_inner(f))
+              return true;
+            found.push_back(f);
+            ++inner;
+            return false;
+          },
+          [&](const Frame& f, const Node&) { found.push_back(f); });
+        starts.swap(found);
+        if(inner >= leaf_listing_subtrees || inner == 0 || level >= depth_)
+          break;
+      }
+      std::vector<std::size_t> first(starts.size() + 1, 0);
+      internal::for_each_index<ConcurrencyTag>(starts.size(), [&](std::size_t k) {
+        std::size_t count = 1;
+        if(is_inner(starts[k]))
+        {
+          count = 0;
+          traverse([](const Frame&, double&) { return true; }, [&](const Frame&, const Node&) { ++count; }, starts[k]);
+        }
+        first[k + 1] = count;
+      }, 1);
+      for(std::size_t k = 0; k < starts.size(); ++k)
+        first[k + 1] += first[k];
+      out.leaves.resize(first.back()); // (every entry written below)
+      internal::for_each_index<ConcurrencyTag>(starts.size(), [&](std::size_t k) {
+        std::size_t at = first[k];
+        if(is_inner(starts[k]))
+          traverse([](const Frame&, double&) { return true; },
+                   [&](const Frame& f, const Node&) { out.leaves[at++] = f; }, starts[k]);
+        else
+          out.leaves[at] = starts[k];
+      }, 1);
+    }
     out.begin.push_back(0);
     for(std::size_t l = 0, w = 0; l < out.leaves.size(); ++l)
     {
-      w += weight(nodes_[out.leaves[l].second]);
+      w += weight(nodes_[out.leaves[l].node]);
       if(w >= group_weight || l + 1 == out.leaves.size())
       {
         out.begin.push_back(l + 1);
@@ -1411,7 +1465,7 @@ private:
     set_workspace(box);
     Keys keys = sorted_keys<Tag>(range, pm, n, approx);
     gather_points<Tag>(range, pm, keys, approx);
-    build_nodes(keys);
+    build_nodes<Tag>(keys);
   }
 
   static void throw_non_finite_point(std::size_t i)
@@ -1635,23 +1689,101 @@ private:
   // children are laid out depth first: the blocks of a path from the root to a leaf come in
   // increasing order, and those of a small subtree are close together, so that a descent reads
   // memory forward.
+  //
+  // With a parallel `ConcurrencyTag`, the subtrees below one level are laid out on TBB's threads:
+  // the layout is depth first, so the blocks of the subtree of a node of that level form one run,
+  // whose length is that subtree's number of nodes. The nodes above that level are split first,
+  // counting only, which lists the subtrees in the order of the layout; the subtrees are
+  // counted (in parallel); the nodes above the level are split again, into place, leaving each
+  // subtree's run its room; then every subtree is split into its room (in parallel). The nodes
+  // are those of the sequential build, in the same places; their array is sized once (no growth
+  // by copies into fresh memory), and its pages are first touched by the threads that fill it.
+  template <typename ConcurrencyTag = CGAL::Sequential_tag>
   void build_nodes(const Keys& keys)
   {
-    const std::size_t n = keys.size();
+    const Node root{0, std::uint32_t(keys.size()), 0, 0};
     nodes_.clear();
-    nodes_.push_back(Node{0, std::uint32_t(n), 0, 0});
-    std::vector<Node_index> pending{0};
+    if constexpr(internal::runs_in_parallel<ConcurrencyTag>())
+    {
+      build_nodes_by_subtrees<ConcurrencyTag>(keys, root);
+      return;
+    }
+    Growing_nodes grown{nodes_};
+    nodes_.push_back(root);
+    split_depth_first(keys, root, 0, grown, [](const Node&, Node_index) { return false; });
+  }
+
+  // whether node `nd` is split (`build_nodes()`)
+  bool is_split(const Keys& keys, const Node& nd) const
+  {
+    return nd.end - nd.begin > capacity_ && nd.level < depth_ && keys[nd.begin].code != keys[nd.end - 1].code;
+  }
+
+  // The places `split_depth_first()` puts the nodes it makes: `size()` is the index of the next
+  // node, `push_back()` puts it there, `set_first_child()` links a node to its children.
+  // `Growing_nodes` appends to the array of nodes; `Counted_nodes` keeps nothing and counts.
+  struct Growing_nodes
+  {
+    internal::Uninitialized_vector<Node>& nodes;
+    Node_index size() const { return Node_index(nodes.size()); }
+    void push_back(const Node& nd) { nodes.push_back(nd); }
+    void set_first_child(Node_index parent, Node_index first) { nodes[parent].first_child = first; }
+  };
+  struct Counted_nodes
+  {
+    Node_index next = 0;
+    Node_index size() const { return next; }
+    void push_back(const Node&) { ++next; }
+    void set_first_child(Node_index, Node_index) {}
+  };
+  // `Placed_nodes` writes into a room of a sized array, from `next` on, and links the parents
+  // from `first_own` on (the parent of the room's first block, outside it, is linked by the
+  // caller); `Listed_nodes` keeps the nodes it is given with their places (in increasing order),
+  // for the caller to write them later.
+  struct Placed_nodes
+  {
+    Node* nodes;
+    Node_index next, first_own;
+    Node_index size() const { return next; }
+    void push_back(const Node& nd) { nodes[next++] = nd; }
+    void set_first_child(Node_index parent, Node_index first)
+    {
+      if(parent >= first_own)
+        nodes[parent].first_child = first;
+    }
+  };
+  struct Listed_nodes
+  {
+    std::vector<std::pair<Node_index, Node>> listed;
+    Node_index next;
+    Node_index size() const { return next; }
+    void push_back(const Node& nd) { listed.emplace_back(next++, nd); }
+    void set_first_child(Node_index parent, Node_index first)
+    {
+      const auto at = std::lower_bound(listed.begin(), listed.end(), parent,
+                                       [](const std::pair<Node_index, Node>& x, Node_index p) { return x.first < p; });
+      at->second.first_child = first;
+    }
+  };
+
+  // Splits `root` (at index `root_index` of `out`) and its descendants, depth first, each split
+  // node's 8 children appended to `out` as one block: the sequential layout from `out.size()` on.
+  // A node to split for which `defer(node, index)` returns `true` is left to the caller.
+  template <typename Out, typename Defer>
+  void split_depth_first(const Keys& keys, const Node& root, Node_index root_index, Out& out, const Defer& defer) const
+  {
+    std::vector<std::pair<Node, Node_index>> pending{{root, root_index}};
     while(!pending.empty())
     {
-      const Node_index ni = pending.back();
+      const std::pair<Node, Node_index> top = pending.back();
       pending.pop_back();
-      const Node nd = nodes_[ni];
-      if(nd.end - nd.begin <= capacity_ || nd.level >= depth_ ||
-         keys[nd.begin].code == keys[nd.end - 1].code)
+      const Node& nd = top.first;
+      if(!is_split(keys, nd) || defer(nd, top.second))
         continue;
       const unsigned shift = 3 * (depth_ - 1 - nd.level);
-      const Node_index first = Node_index(nodes_.size());
-      nodes_[ni].first_child = first;
+      const Node_index first = out.size();
+      out.set_first_child(top.second, first);
+      std::array<Node, 8> children;
       std::uint32_t begin = nd.begin;
       for(std::uint64_t oct = 0; oct < 8; ++oct)
       {
@@ -1662,13 +1794,77 @@ private:
                                                      return ((k.code >> shift) & 7) <= oct;
                                                    }) -
                               keys.begin());
-        nodes_.push_back(Node{begin, end, 0, nd.level + 1});
+        children[oct] = Node{begin, end, 0, nd.level + 1};
+        out.push_back(children[oct]);
         begin = end;
       }
       for(Node_index oct = 8; oct-- > 0;)
-        if(nodes_[first + oct].end - nodes_[first + oct].begin > capacity_)
-          pending.push_back(first + oct);
+        if(children[oct].end - children[oct].begin > capacity_)
+          pending.emplace_back(children[oct], first + oct);
     }
+  }
+
+  // the smallest number of subtrees `build_nodes_by_subtrees()` looks for below its level
+  static constexpr std::size_t subtrees_wanted = 64;
+
+  template <typename ConcurrencyTag>
+  void build_nodes_by_subtrees(const Keys& keys, const Node& root)
+  {
+    // The level: the first with `subtrees_wanted` nodes to split, or the deepest holding any
+    // (it depends on the keys only). The subtrees below it, in the order of the layout.
+    std::vector<Node> subtrees;
+    Node_index above = 1; // the nodes above the level and on it, the root included
+    std::uint32_t subtree_level = 1;
+    for(std::uint32_t level = 1;; ++level)
+    {
+      std::vector<Node> found;
+      Counted_nodes counted{1};
+      split_depth_first(keys, root, 0, counted, [&](const Node& nd, Node_index) {
+        if(nd.level < level)
+          return false;
+        found.push_back(nd);
+        return true;
+      });
+      if(found.empty() && level > 1)
+        break; // the level above held the deepest nodes to split
+      subtrees.swap(found);
+      above = counted.next;
+      subtree_level = level;
+      if(subtrees.size() >= subtrees_wanted || subtrees.empty() || level >= depth_)
+        break;
+    }
+    std::vector<Node_index> room(subtrees.size());
+    internal::for_each_index<ConcurrencyTag>(subtrees.size(), [&](std::size_t k) {
+      Counted_nodes counted;
+      split_depth_first(keys, subtrees[k], 0, counted, [](const Node&, Node_index) { return false; });
+      room[k] = counted.next;
+    }, 1);
+    std::size_t total = above;
+    for(Node_index r : room)
+      total += r;
+    if(total >= std::size_t(npos))
+      throw std::length_error("Soup_topology::Octree: too many nodes");
+    // The nodes above the level, each subtree's room left after its root's block, listed first:
+    // they lie between the rooms, all over the array, whose pages the subtrees' threads touch
+    // first; they are written last.
+    std::vector<std::pair<Node_index, Node_index>> placed(subtrees.size()); // (root's index, start of its room)
+    std::size_t k = 0;
+    Listed_nodes above_level{{{0, root}}, 1};
+    split_depth_first(keys, root, 0, above_level, [&](const Node& nd, Node_index ni) {
+      if(nd.level < subtree_level)
+        return false;
+      placed[k] = {ni, above_level.next};
+      above_level.set_first_child(ni, above_level.next);
+      above_level.next += room[k++];
+      return true;
+    });
+    nodes_.resize(total); // (every node written below)
+    internal::for_each_index<ConcurrencyTag>(subtrees.size(), [&](std::size_t j) {
+      Placed_nodes in_room{nodes_.data(), placed[j].second, placed[j].second};
+      split_depth_first(keys, subtrees[j], placed[j].first, in_room, [](const Node&, Node_index) { return false; });
+    }, 1);
+    for(const std::pair<Node_index, Node>& listed : above_level.listed)
+      nodes_[listed.first] = listed.second;
   }
 
   // sorts by (code, id) each run of keys that share the bits above `low` in [first, last), which
