@@ -291,7 +291,10 @@ TEST(ParallelSTL, ReadTriangleSoupOfEveryFormat)
     return std::make_tuple(r.format, r.input_polygons, r.input_vertices, r.input_triangles, r.skipped_polygons,
                            r.non_convex_polygons, r.exact_duplicates, r.collapsed_triangles);
   };
-  for(const auto& [format, bytes] : files) {
+  for(const auto& file : files) {
+    // (named references, not a structured binding: C++17 does not let a lambda capture one)
+    const std::string& format = file.first;
+    const std::string& bytes = file.second;
     SCOPED_TRACE(format + ", " + std::to_string(bytes.size()) + " bytes");
     std::vector<Point> expected_points;
     std::vector<Triangle> expected_triangles;
