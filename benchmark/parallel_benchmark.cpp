@@ -6,7 +6,8 @@
 // side, which warms the allocator, the outputs' memory and the file-system cache, each phase runs
 // `--repetitions R` times on 1 thread and R times on all threads, the two sides interleaved, and
 // the smallest time of each side is reported (the runs of one side differ by up to 20 % on a
-// shared 2-core machine: one run of each is not enough to decide a speedup target).
+// shared 2-core machine: one run of each is not enough to decide a speedup target). A phase that
+// changes its input in place is given a copy of it before each run, untimed.
 //
 // Inputs, made once per process from clean/bunny00.off.xz (75,408 triangles) of the shared data
 // folder, split 1-to-4 at the edge midpoints (soup_test::subdivide_midpoints):
@@ -133,12 +134,17 @@ bool identical = true;
 std::size_t repetitions = 3; // timed runs of each side, interleaved; the smallest time is reported
 
 // Times `one()` and `all()` `repetitions` times each, interleaved (one, all, one, all, ...), and
-// keeps the smallest time of each side in `r`.
-void time_interleaved(Row& r, const std::function<void()>& one, const std::function<void()>& all)
+// keeps the smallest time of each side in `r`. `before_one()` and `before_all()`, untimed, run
+// before each timed run of their side (e.g. the copy of the input that a phase changes in place).
+void time_interleaved(Row& r, const std::function<void()>& one, const std::function<void()>& all,
+                      const std::function<void()>& before_one = [] {},
+                      const std::function<void()>& before_all = [] {})
 {
   r.one = r.all = std::numeric_limits<double>::infinity();
   for(std::size_t i = 0; i < repetitions; ++i) {
+    before_one();
     r.one = std::min(r.one, timed(one));
+    before_all();
     r.all = std::min(r.all, timed(all));
   }
 }
@@ -156,16 +162,22 @@ void print_row(const Row& r, std::size_t threads)
 }
 
 // Runs `run_one` once untimed, then times it on 1 thread and `run_all` on all threads
-// (`time_interleaved()`); `same()` compares their results (of the last runs).
+// (`time_interleaved()`); `same()` compares their results (of the last runs). A phase that
+// changes its input in place is given it by `copy_one()` and `copy_all()`, untimed, before each
+// run of its side: the time is the phase's alone (the copy of a 4M soup, one thread's memory
+// traffic, would otherwise weigh on both sides as a serial part of the phase).
 void measure(const std::string& name, std::size_t threads, const std::function<void()>& run_one,
-             const std::function<void()>& run_all, const std::function<bool()>& same)
+             const std::function<void()>& run_all, const std::function<bool()>& same,
+             const std::function<void()>& copy_one = [] {}, const std::function<void()>& copy_all = [] {})
 {
   // Both sides run once untimed first: the vectors that they assign keep their capacity, so that
   // neither timed run is the first to fault in the memory of its outputs.
+  copy_one();
   run_one();
+  copy_all();
   with_threads(threads, run_all);
   Row r{name, 0, 0};
-  time_interleaved(r, [&] { with_threads(1, run_one); }, [&] { with_threads(threads, run_all); });
+  time_interleaved(r, [&] { with_threads(1, run_one); }, [&] { with_threads(threads, run_all); }, copy_one, copy_all);
   if(!same()) {
     std::printf("%s: the parallel result differs from the 1-thread result\n", name.c_str());
     identical = false;
@@ -352,9 +364,9 @@ int main(int argc, char** argv)
             [&] { ST::index_triangles<Parallel>(jittered, pn, tn); }, [&] { return p1 == pn && t1 == tn; });
     const auto np = CGAL::parameters::snapping_tolerance(1e-5 * diag);
     measure("4M jittered: reconstruct_topology", threads,
-            [&] { q1 = p1; u1 = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(q1, u1, np); },
-            [&] { qn = p1; un = t1; ST::internal::reconstruct_exactly_welded_soup<Parallel>(qn, un, np); },
-            [&] { return q1 == qn && u1 == un; });
+            [&] { ST::internal::reconstruct_exactly_welded_soup<Parallel>(q1, u1, np); },
+            [&] { ST::internal::reconstruct_exactly_welded_soup<Parallel>(qn, un, np); },
+            [&] { return q1 == qn && u1 == un; }, [&] { q1 = p1; u1 = t1; }, [&] { qn = p1; un = t1; });
     measure_steps("4M jittered, step by step", threads, p1, t1, 1e-5 * diag);
   }
   std::vector<Explicit_triangle>().swap(exploded);
@@ -365,9 +377,10 @@ int main(int argc, char** argv)
     std::vector<Point> p1, pn;
     std::vector<Triangle> t1, tn;
     measure("4M T-junction patches: reconstruct_topology", threads,
-            [&] { p1 = soup.points; t1 = soup.triangles; ST::reconstruct_topology<Parallel>(p1, t1, np); },
-            [&] { pn = soup.points; tn = soup.triangles; ST::reconstruct_topology<Parallel>(pn, tn, np); },
-            [&] { return p1 == pn && t1 == tn; });
+            [&] { ST::reconstruct_topology<Parallel>(p1, t1, np); },
+            [&] { ST::reconstruct_topology<Parallel>(pn, tn, np); },
+            [&] { return p1 == pn && t1 == tn; }, [&] { p1 = soup.points; t1 = soup.triangles; },
+            [&] { pn = soup.points; tn = soup.triangles; });
     measure_steps("4M T-junction patches, step by step", threads, soup.points, soup.triangles, 1e-6 * diag);
   }
   // 4. Loop subdivision
@@ -376,9 +389,9 @@ int main(int argc, char** argv)
     std::vector<Triangle> t1, tn;
     const auto np = CGAL::parameters::number_of_iterations(2);
     measure("Loop: 2 levels of 1.2M triangles", threads,
-            [&] { p1 = loop_points; t1 = loop_triangles; ST::loop_subdivision<Parallel>(p1, t1, np); },
-            [&] { pn = loop_points; tn = loop_triangles; ST::loop_subdivision<Parallel>(pn, tn, np); },
-            [&] { return p1 == pn && t1 == tn; });
+            [&] { ST::loop_subdivision<Parallel>(p1, t1, np); }, [&] { ST::loop_subdivision<Parallel>(pn, tn, np); },
+            [&] { return p1 == pn && t1 == tn; }, [&] { p1 = loop_points; t1 = loop_triangles; },
+            [&] { pn = loop_points; tn = loop_triangles; });
   }
   // 5. the command line, end to end
   {
