@@ -165,7 +165,8 @@ class Snap_visitor_holder;
 ///
 /// **Threads.** With `CGAL::Parallel_tag` the steps that are data-parallel run on TBB's threads;
 /// the result (triangles, tables, report, visitor calls) is the same on any number of threads
-/// (`doc/Soup_topology/Parallel.md`).
+/// (`doc/Soup_topology/Parallel.md`; the calls to a visitor that takes the merges in any order
+/// are the same, not their order).
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
 ///         or `CGAL::Parallel_if_available_tag`
@@ -198,7 +199,11 @@ class Snap_visitor_holder;
 ///   \cgalParamNBegin{geom_traits} \cgalParamDescription{the traits object that takes every geometric
 ///     decision} \cgalParamType{a CGAL Kernel} \cgalParamDefault{the kernel of the point type} \cgalParamNEnd
 ///   \cgalParamNBegin{visitor} \cgalParamDescription{told of every merge and refusal; copied, unless given
-///     as `std::ref(v)`} \cgalParamType{a class with `on_merge(std::size_t, std::size_t)` and
+///     as `std::ref(v)`. The merges are told on one thread in increasing order of the merged vertices,
+///     unless the class has a member `static constexpr bool tells_merges_concurrently = true`: its
+///     `on_merge()` may then be called on TBB's threads with `CGAL::Parallel_tag`, several at once,
+///     in no particular order (each call must touch only what belongs to its merged vertex)}
+///     \cgalParamType{a class with `on_merge(std::size_t, std::size_t)` and
 ///     `on_refusal(std::size_t, std::size_t, Refusal_reason)`} \cgalParamDefault{`Default_snap_visitor`}
 ///     \cgalParamNEnd
 ///   \cgalParamNBegin{small_features} \cgalParamDescription{whether two vertices of one triangle within

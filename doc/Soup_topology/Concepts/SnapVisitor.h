@@ -16,6 +16,13 @@ site of the weld, named by its smallest point.
 | `v.on_merge(duplicate, representative)` | every reference to `duplicate` is replaced by `representative` |
 | `v.on_refusal(vertex, representative, reason)` | the merge was refused, `reason` a `Soup_topology::Refusal_reason` |
 
+The merges are told on one thread, in increasing order of the merged vertices. A visitor class
+with a member `static constexpr bool tells_merges_concurrently = true` allows them in any order:
+with `CGAL::Parallel_tag`, `on_merge()` may then be called on TBB's threads, several at once
+(each call must touch only what belongs to its `duplicate`); the calls are the same, on any number
+of threads. `Soup_topology::Default_snap_visitor` takes them so, and so does the visitor that
+`reconstruct_topology()` gives `snap_vertices()` when the caller gives none.
+
 \cgalHasModelsBegin
 \cgalHasModels{`Soup_topology::Default_snap_visitor`}
 \cgalHasModels{`Soup_topology::IO::Html_report_site_recorder`}
