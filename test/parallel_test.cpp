@@ -79,15 +79,29 @@ TEST(ParallelExactWeld, ByBlocksGivesTheFirstPointOfTheSingleTable)
         ASSERT_EQ(expected[i], first.at(key)) << i;
       }
     }
+    // the first points of every block, counted by the last pass when asked
+    std::vector<std::size_t> expected_firsts(ST::internal::number_of_blocks(n), 0);
+    for(std::size_t i = 0; i < n; ++i) expected_firsts[i / ST::internal::default_block_size] += expected[i] == i ? 1 : 0;
     for(const std::size_t budget : {std::size_t(0), ST::internal::default_block_size, n / 3, n}) {
       SCOPED_TRACE("points: " + std::to_string(n) + ", budget: " + std::to_string(budget));
       const auto sequential = ST::internal::first_equal_points_by_blocks<CGAL::Sequential_tag>(n, point, budget);
       EXPECT_EQ(std::vector<std::uint32_t>(sequential.begin(), sequential.end()), expected);
       for_each_thread_count([&](int) {
-        const auto parallel = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget);
+        std::vector<std::size_t> firsts(3, 99); // replaced whole
+        const auto parallel = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget, &firsts);
         EXPECT_EQ(std::vector<std::uint32_t>(parallel.begin(), parallel.end()), expected);
+        EXPECT_EQ(firsts, expected_firsts);
       });
     }
+    // a range of one block is welded by one table: its first points counted too
+    const std::size_t small = ST::internal::default_block_size - 5;
+    std::vector<std::size_t> firsts;
+    const auto one_block = ST::internal::first_equal_points_by_blocks<Parallel>(small, point, 0, &firsts);
+    EXPECT_EQ(std::vector<std::uint32_t>(one_block.begin(), one_block.end()),
+              std::vector<std::uint32_t>(expected.begin(), expected.begin() + static_cast<std::ptrdiff_t>(small)));
+    std::size_t small_firsts = 0;
+    for(std::size_t i = 0; i < small; ++i) small_firsts += expected[i] == i ? 1 : 0;
+    EXPECT_EQ(firsts, std::vector<std::size_t>(1, small_firsts));
   }
 }
 
@@ -835,6 +849,29 @@ TEST(ParallelChecks, TheFirstBadFaceOrPointIsNamed)
       EXPECT_EQ(message([&] { ST::orient_triangle_soup<Parallel>(p, t); }), expected);
     });
   }
+  // Faces of signed indices and of any size (the tables check and copy them in one pass by
+  // blocks): the good soup gives the sequential tables, a bad one the sequential message.
+  std::vector<std::vector<int>> signed_soup;
+  for(const Triangle& t : m.triangles)
+    signed_soup.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  const ST::Adjacency_tables signed_tables(signed_soup, m.points.size());
+  std::vector<std::vector<std::vector<int>>> bad_signed_soups(3, signed_soup);
+  bad_signed_soups[0][65000][1] = -3;                                // a negative index
+  bad_signed_soups[1][40000].push_back(7);                           // a quad
+  bad_signed_soups[1][75000][0] = -1;                                // after it: a negative index
+  bad_signed_soups[2][30000].pop_back();                             // a segment
+  bad_signed_soups[2][30001][0] = static_cast<int>(m.points.size()); // after it: out of range
+  const std::vector<std::string> expected_signed = {"face 65000: negative vertex index -3",
+                                                    "face 40000 has 4 vertices; a triangle soup needs exactly 3",
+                                                    "face 30000 has 2 vertices; a triangle soup needs exactly 3"};
+  for(std::size_t k = 0; k < bad_signed_soups.size(); ++k)
+    EXPECT_EQ(message([&] { ST::Adjacency_tables(bad_signed_soups[k], m.points.size()); }), expected_signed[k]);
+  for_each_thread_count([&](int) {
+    expect_same_tables(ST::Adjacency_tables(signed_soup, m.points.size(), Parallel()), signed_tables);
+    for(std::size_t k = 0; k < bad_signed_soups.size(); ++k)
+      EXPECT_EQ(message([&] { ST::Adjacency_tables(bad_signed_soups[k], m.points.size(), Parallel()); }),
+                expected_signed[k]);
+  });
   const std::string expected = message([&] {
     std::vector<Point> p = bad_points;
     std::vector<Triangle> t = m.triangles;

@@ -12,6 +12,7 @@
 #include <Soup_topology/internal/uninitialized_vector.h>
 #include <Soup_topology/internal/union_find.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/tags.h>
 
 #include <algorithm>
@@ -181,20 +182,38 @@ public:
   Adjacency_tables(const FaceRange& faces, std::size_t number_of_points, ConcurrencyTag tag)
   {
     (void)tag;
-    internal::check_triangle_soup<ConcurrencyTag>(faces, number_of_points);
     const std::size_t m = static_cast<std::size_t>(std::distance(std::begin(faces), std::end(faces)));
     using Face_iterator = decltype(std::begin(faces));
     constexpr bool random_access = std::is_base_of<std::random_access_iterator_tag,
       typename std::iterator_traits<Face_iterator>::iterator_category>::value;
     if constexpr(internal::runs_in_parallel<ConcurrencyTag>() && random_access) {
-      triangles_.resize(m); // unwritten: every triangle is written below, on the thread of its block
-      internal::for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
-        const auto& f = *(std::begin(faces) + static_cast<std::ptrdiff_t>(t));
-        triangles_[t] = {static_cast<size_type>(internal::corner(f, 0, t)),
-                         static_cast<size_type>(internal::corner(f, 1, t)),
-                         static_cast<size_type>(internal::corner(f, 2, t))};
-      });
+      // Checked and copied in one pass by blocks; a block that meets a face that is not a
+      // triangle of distinct indices in range says so, and `check_triangle_soup()` then throws
+      // the message of the first such face, as it does before any copy otherwise.
+      bool checked = false;
+      if(internal::fits_in_32_bit_indices(number_of_points, m)) {
+        triangles_.resize(m); // unwritten: every triangle is written below, on the thread of its block
+        std::vector<unsigned char> bad_in_block(internal::number_of_blocks(m), 0);
+        internal::for_each_block<ConcurrencyTag>(m, internal::default_block_size,
+                                                 [&](std::size_t b, std::size_t begin, std::size_t end) {
+          std::array<std::size_t, 3> v;
+          for(std::size_t t = begin; t != end; ++t) {
+            if(!internal::is_triangle_of_distinct_indices(*(std::begin(faces) + static_cast<std::ptrdiff_t>(t)),
+                                                          number_of_points, v)) {
+              bad_in_block[b] = 1;
+              return;
+            }
+            triangles_[t] = {static_cast<size_type>(v[0]), static_cast<size_type>(v[1]), static_cast<size_type>(v[2])};
+          }
+        });
+        checked = std::find(bad_in_block.begin(), bad_in_block.end(), 1) == bad_in_block.end();
+      }
+      if(!checked) {
+        internal::check_triangle_soup<ConcurrencyTag>(faces, number_of_points); // throws
+        CGAL_error_msg("check_triangle_soup() accepted a face that is_triangle_of_distinct_indices() refused");
+      }
     } else {
+      internal::check_triangle_soup<ConcurrencyTag>(faces, number_of_points);
       triangles_.reserve(m);
       std::size_t face_id = 0;
       for(const auto& f : faces) {

@@ -60,40 +60,54 @@ using Point_concurrency =
 
 /// `index_corners()` computed in parallel (see `first_equal_points_by_blocks()`): the points
 /// are numbered by the rank of their first corner, found by prefix sums over blocks, so the
-/// points, the triangles and their order are those of the sequential pass.
+/// points, the triangles and their order are those of the sequential pass. Three passes follow
+/// the weld, each by blocks: the first corners numbered and their points copied (the weld counted
+/// them by blocks); the later corners numbered from their first corners, the triangles that keep
+/// three distinct points counted by blocks; the kept triangles written.
 template <class ConcurrencyTag, class CornerAccess, class PointRange, class FaceRange>
 void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_point, PointRange& points,
                                FaceRange& faces, Index_report& report)
 {
   using Face = typename FaceRange::value_type;
+  constexpr std::size_t block_size = default_block_size;
+  // the first corners of every block of corners, then the number of the block's first point
+  std::vector<std::size_t> point_place;
   const Uninitialized_vector<std::uint32_t> first_of =
-    first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point);
-  Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners below, then the others
+    first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point, 0, &point_place);
+  const std::size_t distinct = exclusive_prefix_sums(point_place);
+  Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners first, then the others
   points.clear();
-  const std::size_t distinct = compact_in_order<ConcurrencyTag>(
-    corners, [&](std::size_t i) { return first_of[i] == i; },
-    [&](std::size_t i, std::size_t position) { point_of[i] = static_cast<std::uint32_t>(position); });
   points.resize(distinct);
-  for_each_index<ConcurrencyTag>(corners, [&](std::size_t i) {
-    if(first_of[i] == i) points[point_of[i]] = corner_point(i);
+  for_each_block<ConcurrencyTag>(corners, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::size_t position = point_place[b];
+    for(std::size_t i = begin; i != end; ++i) {
+      if(first_of[i] != i) continue;
+      points[position] = corner_point(i);
+      point_of[i] = static_cast<std::uint32_t>(position++);
+    }
   });
-  // every first corner has its point now: the later corners read it
-  for_each_index<ConcurrencyTag>(corners, [&](std::size_t i) {
-    if(first_of[i] != i) point_of[i] = point_of[first_of[i]];
-  });
+  // every first corner has its number now: the later corners read it; blocks of whole triangles
   const std::size_t m = corners / 3;
-  auto kept = [&](std::size_t k) {
-    const std::uint32_t a = point_of[3 * k], b = point_of[3 * k + 1], c = point_of[3 * k + 2];
-    return a != b && b != c && c != a;
-  };
-  Uninitialized_vector<std::uint32_t> kept_triangle(m); // the first `kept_count` written below
+  std::vector<std::size_t> face_place(number_of_blocks(m, block_size), 0);
+  for_each_block<ConcurrencyTag>(m, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::size_t kept = 0;
+    for(std::size_t k = begin; k != end; ++k) {
+      for(std::size_t i = 3 * k; i != 3 * k + 3; ++i)
+        if(first_of[i] != i) point_of[i] = point_of[first_of[i]];
+      const std::uint32_t a = point_of[3 * k], c = point_of[3 * k + 1], d = point_of[3 * k + 2];
+      kept += a != c && c != d && d != a ? 1u : 0u;
+    }
+    face_place[b] = kept;
+  });
+  const std::size_t kept_count = exclusive_prefix_sums(face_place);
   faces.clear();
-  const std::size_t kept_count = compact_in_order<ConcurrencyTag>(
-    m, kept, [&](std::size_t k, std::size_t position) { kept_triangle[position] = static_cast<std::uint32_t>(k); });
   faces.resize(kept_count);
-  for_each_index<ConcurrencyTag>(kept_count, [&](std::size_t f) {
-    const std::size_t k = kept_triangle[f];
-    faces[f] = make_triangle<Face>(point_of[3 * k], point_of[3 * k + 1], point_of[3 * k + 2]);
+  for_each_block<ConcurrencyTag>(m, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::size_t position = face_place[b];
+    for(std::size_t k = begin; k != end; ++k) {
+      const std::uint32_t a = point_of[3 * k], c = point_of[3 * k + 1], d = point_of[3 * k + 2];
+      if(a != c && c != d && d != a) faces[position++] = make_triangle<Face>(a, c, d);
+    }
   });
   report.collapsed_triangles += m - kept_count;
   report.vertices = points.size();

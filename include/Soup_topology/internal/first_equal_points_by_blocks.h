@@ -50,23 +50,34 @@ namespace internal {
 /// threads when `ConcurrencyTag` asks for it. Other number types than `double` go to
 /// `first_equal_points()` (lazily exact numbers share state between copies), as do the soups of
 /// one block. `key_budget`: the most representatives copied at once (0: a quarter of `n`, at
-/// least one block); the result does not depend on it.
+/// least one block); the result does not depend on it. `firsts_by_block`, if given, receives the
+/// number of first points (`first_of[i] == i`) in every block of `default_block_size` points
+/// (counted by the last pass, which reads every entry anyway).
 template <class ConcurrencyTag, class PointAccess>
 Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, const PointAccess& point,
-                                                                 std::size_t key_budget = 0)
+                                                                 std::size_t key_budget = 0,
+                                                                 std::vector<std::size_t>* firsts_by_block = nullptr)
 {
   using Point = std::decay_t<decltype(point(std::size_t(0)))>;
   using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
   constexpr std::size_t block_size = default_block_size;
+  const std::size_t blocks = number_of_blocks(n, block_size);
+  if(firsts_by_block != nullptr) firsts_by_block->assign(blocks, 0);
+  // the one-table weld, its first points counted by blocks if asked
+  auto weld_in_one_table = [&] {
+    Uninitialized_vector<std::uint32_t> first_of = first_equal_points(n, point);
+    if(firsts_by_block != nullptr)
+      for(std::size_t i = 0; i < n; ++i) (*firsts_by_block)[i / block_size] += first_of[i] == i ? 1u : 0u;
+    return first_of;
+  };
   if constexpr(!std::is_same<FT, double>::value) {
-    return first_equal_points(n, point);
+    return weld_in_one_table();
   } else {
-    if(n <= block_size) return first_equal_points(n, point);
+    if(n <= block_size) return weld_in_one_table();
     constexpr std::size_t partitions = 256;
     auto partition = [](std::uint64_t hash) { return static_cast<std::size_t>(hash >> 56); };
     // the other bits of the hash: the slot of a point in a table
     auto fingerprint = [](std::uint64_t hash) { return static_cast<std::uint32_t>(hash >> 24); };
-    const std::size_t blocks = number_of_blocks(n, block_size);
     // (`Uninitialized_vector`: written whole by the blocks, which fault in its pages)
     Uninitialized_vector<std::uint32_t> first_of(n);
 
@@ -152,11 +163,16 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     // the same block. A representative names the first point of its class now (itself, or a
     // point of an earlier block), which names itself: nothing read here is written by another
     // block.
-    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t firsts = 0;
       for(std::size_t i = begin; i != end; ++i) {
         const std::uint32_t r = first_of[i];
-        if(r != i) first_of[i] = first_of[r];
+        if(r != i)
+          first_of[i] = first_of[r];
+        else
+          ++firsts;
       }
+      if(firsts_by_block != nullptr) (*firsts_by_block)[b] = firsts;
     });
     return first_of;
   }

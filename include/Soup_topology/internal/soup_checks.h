@@ -124,6 +124,29 @@ void check_triangle(const Face& f, std::size_t face_id, std::size_t number_of_po
                         ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")");
 }
 
+/// `true` if `check_triangle(f, face_id, number_of_points)` would not throw, without building a
+/// message: the face is a triangle of three distinct vertex indices below `number_of_points`,
+/// which `v` receives. (A negative index converts to a `std::size_t` above any number of points.)
+template <class Face>
+bool is_triangle_of_distinct_indices(const Face& f, std::size_t number_of_points, std::array<std::size_t, 3>& v)
+{
+  if(face_size(f) != 3) return false;
+  auto it = std::begin(f);
+  for(std::size_t k = 0; k < 3; ++k, ++it) {
+    v[k] = static_cast<std::size_t>(*it);
+    if(v[k] >= number_of_points) return false;
+  }
+  return v[0] != v[1] && v[1] != v[2] && v[2] != v[0];
+}
+
+/// `true` if `check_triangle_soup()` accepts the sizes of a soup of `number_of_points` points and
+/// `number_of_faces` faces (their indices are stored on 32 bits).
+inline bool fits_in_32_bit_indices(std::size_t number_of_points, std::size_t number_of_faces)
+{
+  constexpr std::size_t limit = static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max() - 2);
+  return number_of_points < limit && number_of_faces < limit;
+}
+
 /// `true` if the iterators of `Range` are random access.
 template <class Range>
 constexpr bool has_random_access()
