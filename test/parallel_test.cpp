@@ -87,21 +87,25 @@ TEST(ParallelExactWeld, ByBlocksGivesTheFirstPointOfTheSingleTable)
       const auto sequential = ST::internal::first_equal_points_by_blocks<CGAL::Sequential_tag>(n, point, budget);
       EXPECT_EQ(std::vector<std::uint32_t>(sequential.begin(), sequential.end()), expected);
       for_each_thread_count([&](int) {
-        std::vector<std::size_t> firsts(3, 99); // replaced whole
-        const auto parallel = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget, &firsts);
+        ST::internal::Exact_weld_extras extras;
+        extras.firsts_by_block.assign(3, 99); // replaced whole
+        extras.all_finite = false;
+        const auto parallel = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget, &extras);
         EXPECT_EQ(std::vector<std::uint32_t>(parallel.begin(), parallel.end()), expected);
-        EXPECT_EQ(firsts, expected_firsts);
+        EXPECT_EQ(extras.firsts_by_block, expected_firsts);
+        EXPECT_TRUE(extras.all_finite);
       });
     }
     // a range of one block is welded by one table: its first points counted too
     const std::size_t small = ST::internal::default_block_size - 5;
-    std::vector<std::size_t> firsts;
-    const auto one_block = ST::internal::first_equal_points_by_blocks<Parallel>(small, point, 0, &firsts);
+    ST::internal::Exact_weld_extras extras;
+    const auto one_block = ST::internal::first_equal_points_by_blocks<Parallel>(small, point, 0, &extras);
     EXPECT_EQ(std::vector<std::uint32_t>(one_block.begin(), one_block.end()),
               std::vector<std::uint32_t>(expected.begin(), expected.begin() + static_cast<std::ptrdiff_t>(small)));
     std::size_t small_firsts = 0;
     for(std::size_t i = 0; i < small; ++i) small_firsts += expected[i] == i ? 1 : 0;
-    EXPECT_EQ(firsts, std::vector<std::size_t>(1, small_firsts));
+    EXPECT_EQ(extras.firsts_by_block, std::vector<std::size_t>(1, small_firsts));
+    EXPECT_TRUE(extras.all_finite);
   }
 }
 
@@ -807,6 +811,30 @@ TEST(ParallelIndexTriangles, DuplicatesCollapsedTrianglesAndSignedZeros)
       EXPECT_EQ(std::string(e.what()), "triangle 150000, corner 2: non-finite coordinate");
     }
   });
+  // the weld's first pass finds them (by blocks, or in a soup of one block): the first one named,
+  // the output left as it was
+  std::vector<std::array<Point, 3>> small(soup.begin(), soup.begin() + 100);
+  small[57][1] = Point(1, 2, -HUGE_VAL);
+  small[99][0] = Point(std::nan(""), 0, 0);
+  soup[150000][2] = soup[150001][2];
+  soup.back()[2] = Point(0, 0, HUGE_VAL);
+  const std::vector<std::pair<const std::vector<std::array<Point, 3>>*, std::string>> refused = {
+    {&small, "triangle 57, corner 1: non-finite coordinate"},
+    {&soup, "triangle 190000, corner 1: non-finite coordinate"}};
+  for_each_thread_count([&](int) {
+    for(const auto& [bad_soup, message] : refused) {
+      std::vector<Point> p(2, Point(1, 1, 1));
+      std::vector<Triangle> t(1, Triangle{0, 1, 0});
+      try {
+        ST::index_triangles<Parallel>(*bad_soup, p, t);
+        ADD_FAILURE() << "no exception";
+      } catch(const ST::Invalid_input& e) {
+        EXPECT_EQ(std::string(e.what()), message);
+      }
+      EXPECT_EQ(p, std::vector<Point>(2, Point(1, 1, 1)));
+      EXPECT_EQ(t, std::vector<Triangle>(1, Triangle{0, 1, 0}));
+    }
+  });
 }
 
 // The binary STL written on threads: the same bytes (several chunks of facets, with a repeated
@@ -839,6 +867,23 @@ TEST(ParallelChecks, TheFirstBadFaceOrPointIsNamed)
   const std::size_t first_bad_point = bad_points.size() / 2 + 3;
   bad_points[first_bad_point] = Point(0, 0, std::nan(""));
   bad_points[bad_points.size() - 2] = Point(HUGE_VAL, 0, 0);
+  // the exact weld of an indexed soup checks its indices by blocks and its points in its first pass
+  const std::string out_of_range = "face 50000: vertex index " + std::to_string(m.points.size() + 5) +
+                                   " is out of range (" + std::to_string(m.points.size()) + " points)";
+  const std::string non_finite = "point " + std::to_string(first_bad_point) + " has a non-finite coordinate";
+  for(const auto& [soup, pts, expected] : {std::make_tuple(&bad_soups[1], &m.points, out_of_range),
+                                           std::make_tuple(&m.triangles, &bad_points, non_finite)}) {
+    const auto merged = [&, soup = soup, pts = pts](auto tag) {
+      std::vector<Point> p = *pts;
+      std::vector<Triangle> t = *soup;
+      const std::string what = message([&] { ST::internal::merge_duplicate_points_and_map<decltype(tag)>(p, t); });
+      EXPECT_EQ(bits(p), bits(*pts)); // nothing changed
+      EXPECT_EQ(t, *soup);
+      return what;
+    };
+    EXPECT_EQ(merged(CGAL::Sequential_tag()), expected);
+    for_each_thread_count([&, expected = expected](int) { EXPECT_EQ(merged(Parallel()), expected); });
+  }
   for(const std::vector<Triangle>& soup : bad_soups) {
     const std::string expected = message([&] { ST::Adjacency_tables(soup, m.points.size()); });
     ASSERT_NE(expected.find("face "), std::string::npos) << expected;

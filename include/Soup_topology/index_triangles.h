@@ -58,22 +58,36 @@ template <class ConcurrencyTag, class Point>
 using Point_concurrency =
   std::conditional_t<runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag, CGAL::Sequential_tag>;
 
+/// calls `refuse_non_finite()` if the weld found a NaN or infinite coordinate; it must throw, and
+/// if it does not, `Invalid_input` is thrown all the same.
+template <class RefuseNonFinite>
+void refuse_if_non_finite(const Exact_weld_extras& weld, const RefuseNonFinite& refuse_non_finite)
+{
+  if(weld.all_finite) return;
+  refuse_non_finite();
+  throw Invalid_input("non-finite coordinate");
+}
+
 /// `index_corners()` computed in parallel (see `first_equal_points_by_blocks()`): the points
 /// are numbered by the rank of their first corner, found by prefix sums over blocks, so the
 /// points, the triangles and their order are those of the sequential pass. Three passes follow
 /// the weld, each by blocks: the first corners numbered and their points copied (the weld counted
 /// them by blocks); the later corners numbered from their first corners, the triangles that keep
-/// three distinct points counted by blocks; the kept triangles written.
-template <class ConcurrencyTag, class CornerAccess, class PointRange, class FaceRange>
+/// three distinct points counted by blocks; the kept triangles written. `refuse_non_finite()` is
+/// called (and must throw) if a corner has a NaN or infinite coordinate, before `points` and
+/// `faces` are touched.
+template <class ConcurrencyTag, class CornerAccess, class PointRange, class FaceRange, class RefuseNonFinite>
 void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_point, PointRange& points,
-                               FaceRange& faces, Index_report& report)
+                               FaceRange& faces, Index_report& report, const RefuseNonFinite& refuse_non_finite)
 {
   using Face = typename FaceRange::value_type;
   constexpr std::size_t block_size = default_block_size;
-  // the first corners of every block of corners, then the number of the block's first point
-  std::vector<std::size_t> point_place;
+  Exact_weld_extras weld;
   const Uninitialized_vector<std::uint32_t> first_of =
-    first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point, 0, &point_place);
+    first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point, 0, &weld);
+  refuse_if_non_finite(weld, refuse_non_finite);
+  // the first corners of every block of corners, then the number of the block's first point
+  std::vector<std::size_t>& point_place = weld.firsts_by_block;
   const std::size_t distinct = exclusive_prefix_sums(point_place);
   Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners first, then the others
   points.clear();
@@ -113,18 +127,23 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   report.vertices = points.size();
 }
 
-/// the exact weld of `corners` finite corners, corner `i` being `corner_point(i)` (triangle
-/// `i / 3`): `points` receives the distinct points in order of first appearance, `faces` the
-/// triangles of three distinct points (both cleared first); `report` receives the counts of
-/// points and collapsed triangles. `corners` is a multiple of 3 below 2^32.
-template <class CornerAccess, class PointRange, class FaceRange>
+/// the exact weld of `corners` corners, corner `i` being `corner_point(i)` (triangle `i / 3`):
+/// `points` receives the distinct points in order of first appearance, `faces` the triangles of
+/// three distinct points (both cleared first); `report` receives the counts of points and
+/// collapsed triangles. `corners` is a multiple of 3 below 2^32. `refuse_non_finite()` is called
+/// (and must throw) if a corner has a NaN or infinite coordinate, before `points` and `faces` are
+/// touched: the weld's first pass tests the coordinates it reads.
+template <class CornerAccess, class PointRange, class FaceRange, class RefuseNonFinite>
 void index_corners(std::size_t corners, const CornerAccess& corner_point, PointRange& points, FaceRange& faces,
-                   Index_report& report)
+                   Index_report& report, const RefuseNonFinite& refuse_non_finite)
 {
   using Face = typename FaceRange::value_type;
   // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
   // of the point of corner i (a first corner is read before any later one is renumbered).
-  Uninitialized_vector<std::uint32_t> point_of = first_equal_points_by_blocks<CGAL::Sequential_tag>(corners, corner_point);
+  Exact_weld_extras weld;
+  Uninitialized_vector<std::uint32_t> point_of =
+    first_equal_points_by_blocks<CGAL::Sequential_tag>(corners, corner_point, 0, &weld);
+  refuse_if_non_finite(weld, refuse_non_finite);
   // The points are counted first so that `points` holds exactly them, without the spare room
   // of a vector grown one point at a time.
   std::size_t distinct = 0;
@@ -212,20 +231,22 @@ Index_report index_triangles(const TriangleRange& triangles, PointRange& points,
     }
   };
   const std::size_t corners = report.input_corners;
-  // A NaN equals nothing, not even itself: it would silently make a point of its own.
   // Points of exact number types are handled sequentially (see `runs_in_parallel_on_points()`).
   using Tag = std::conditional_t<internal::runs_in_parallel_on_points<ConcurrencyTag, Point>(), ConcurrencyTag,
                                  CGAL::Sequential_tag>;
-  const std::size_t bad = internal::first_index_where<Tag>(
-    corners, [&](std::size_t i) { return !internal::is_finite_point(corner_point(i)); });
-  if(bad != corners)
+  // A NaN equals nothing, not even itself: it would silently make a point of its own. The weld
+  // tests the coordinates as it reads them; if one is not finite, the first such corner is named.
+  const auto refuse_non_finite = [&] {
+    const std::size_t bad = internal::first_index_where<Tag>(
+      corners, [&](std::size_t i) { return !internal::is_finite_point(corner_point(i)); });
     throw Invalid_input("triangle " + std::to_string(bad / 3) + ", corner " + std::to_string(bad % 3) +
                         ": non-finite coordinate");
+  };
   // (on one thread, the sequential pass: it renumbers in place, with fewer arrays to fill)
   if(internal::runs_on_several_threads<Tag>())
-    internal::index_corners_in_parallel<Tag>(corners, corner_point, points, faces, report);
+    internal::index_corners_in_parallel<Tag>(corners, corner_point, points, faces, report, refuse_non_finite);
   else
-    internal::index_corners(corners, corner_point, points, faces, report);
+    internal::index_corners(corners, corner_point, points, faces, report, refuse_non_finite);
   return report;
 }
 
@@ -238,18 +259,37 @@ std::vector<std::size_t> merge_duplicate_points_and_map(PointRange& points, Face
   using Point = typename PointRange::value_type;
   using Tag = Point_concurrency<ConcurrencyTag, Point>;
   const std::size_t n = points.size();
-  std::size_t face_id = 0;
-  for(const auto& f : faces) {
+  // the indices checked by blocks (the faces of random-access ranges), the first bad face again
+  // alone: the message of the sequential check
+  const auto check_face = [n](const auto& f, std::size_t face_id) {
     for(std::size_t k = 0; k < face_size(f); ++k) check_vertex_index(corner(f, k, face_id), n, face_id);
-    ++face_id;
+  };
+  if constexpr(runs_in_parallel<ConcurrencyTag>() && has_random_access<FaceRange>()) {
+    const std::size_t m = faces.size();
+    const std::size_t bad_face = first_index_where<ConcurrencyTag>(m, [&](std::size_t f) {
+      try {
+        check_face(faces[f], f);
+        return false;
+      } catch(const Invalid_input&) {
+        return true;
+      }
+    });
+    if(bad_face != m) check_face(faces[bad_face], bad_face);
+  } else {
+    std::size_t face_id = 0;
+    for(const auto& f : faces) check_face(f, face_id++);
   }
   if(n >= std::size_t(0xFFFFFFF0u))
     throw Invalid_input("too many points (" + std::to_string(n) + ") for 32-bit indices");
-  // A NaN equals nothing, not even itself: it would silently make a point of its own.
-  const std::size_t bad = first_index_where<Tag>(n, [&](std::size_t i) { return !is_finite_point(points[i]); });
-  if(bad != n) throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
+  // A NaN equals nothing, not even itself: it would silently make a point of its own. The weld
+  // tests the coordinates as it reads them; if one is not finite, the first such point is named.
+  Exact_weld_extras weld;
   const Uninitialized_vector<std::uint32_t> first_of =
-    first_equal_points_by_blocks<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; });
+    first_equal_points_by_blocks<Tag>(n, [&](std::size_t i) -> const Point& { return points[i]; }, 0, &weld);
+  refuse_if_non_finite(weld, [&] {
+    const std::size_t bad = first_index_where<Tag>(n, [&](std::size_t i) { return !is_finite_point(points[i]); });
+    throw Invalid_input("point " + std::to_string(bad) + " has a non-finite coordinate");
+  });
   std::vector<std::size_t> new_index(n);
   if constexpr(runs_in_parallel<Tag>()) {
     // the kept points are numbered by prefix sums over blocks and copied out of place

@@ -212,14 +212,16 @@ void read_STL_soup(const char* data, std::size_t size, const std::string& name, 
     const std::size_t count = binary_STL_facet_count(data, size, name);
     const auto corner_point = [data](std::size_t i) { return binary_STL_corner<Point>(data, i); };
     using Tag = Soup_topology::internal::Point_concurrency<ConcurrencyTag, Point>;
-    check_finite_facets<Tag>(count, corner_point, name);
     ir.input_triangles = count;
     ir.input_corners = 3 * count;
+    // (the weld tests the coordinates it decodes; if one is not finite, the facet is named)
+    const auto refuse_non_finite = [&] { check_finite_facets<Tag>(count, corner_point, name); };
     // (the parallel renumbering fills more arrays: on one thread, the sequential one, same result)
     if(Soup_topology::internal::runs_on_several_threads<Tag>())
-      Soup_topology::internal::index_corners_in_parallel<Tag>(ir.input_corners, corner_point, pts, tris, ir);
+      Soup_topology::internal::index_corners_in_parallel<Tag>(ir.input_corners, corner_point, pts, tris, ir,
+                                                              refuse_non_finite);
     else
-      Soup_topology::internal::index_corners(ir.input_corners, corner_point, pts, tris, ir);
+      Soup_topology::internal::index_corners(ir.input_corners, corner_point, pts, tris, ir, refuse_non_finite);
   }
   report.input_polygons = report.input_triangles = ir.input_triangles;
   report.input_vertices = ir.input_corners;

@@ -36,6 +36,7 @@
 #include <CGAL/Kernel_traits.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -44,30 +45,48 @@
 namespace Soup_topology {
 namespace internal {
 
+/// What `first_equal_points_by_blocks()` also finds when asked, read by passes that read every
+/// point and every entry anyway.
+struct Exact_weld_extras
+{
+  /// the number of first points (`first_of[i] == i`) in every block of `default_block_size` points
+  std::vector<std::size_t> firsts_by_block;
+  /// `true` if every coordinate is finite (`is_finite_point()`): a NaN equals nothing, not even
+  /// itself, so that a NaN point is a first point of its own
+  bool all_finite = true;
+};
+
 /// `first_of[i]` = the smallest index j with `point(j) == point(i)`, for the `n` points
 /// `point(0)`, ..., `point(n - 1)` (kernel points, returned by reference or by value): the result
 /// of `first_equal_points(n, point)`, computed by blocks (see the top of this file), on TBB's
 /// threads when `ConcurrencyTag` asks for it. Other number types than `double` go to
 /// `first_equal_points()` (lazily exact numbers share state between copies), as do the soups of
 /// one block. `key_budget`: the most representatives copied at once (0: a quarter of `n`, at
-/// least one block); the result does not depend on it. `firsts_by_block`, if given, receives the
-/// number of first points (`first_of[i] == i`) in every block of `default_block_size` points
-/// (counted by the last pass, which reads every entry anyway).
+/// least one block); the result does not depend on it. `extras`, if given, receives what
+/// `Exact_weld_extras` says (the first points counted by the last pass, the coordinates tested by
+/// the first).
 template <class ConcurrencyTag, class PointAccess>
 Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, const PointAccess& point,
                                                                  std::size_t key_budget = 0,
-                                                                 std::vector<std::size_t>* firsts_by_block = nullptr)
+                                                                 Exact_weld_extras* extras = nullptr)
 {
   using Point = std::decay_t<decltype(point(std::size_t(0)))>;
   using FT = typename CGAL::Kernel_traits<Point>::Kernel::FT;
   constexpr std::size_t block_size = default_block_size;
   const std::size_t blocks = number_of_blocks(n, block_size);
-  if(firsts_by_block != nullptr) firsts_by_block->assign(blocks, 0);
-  // the one-table weld, its first points counted by blocks if asked
+  if(extras != nullptr) {
+    extras->firsts_by_block.assign(blocks, 0);
+    extras->all_finite = true;
+  }
+  // the one-table weld, what `extras` asks for found afterwards
   auto weld_in_one_table = [&] {
     Uninitialized_vector<std::uint32_t> first_of = first_equal_points(n, point);
-    if(firsts_by_block != nullptr)
-      for(std::size_t i = 0; i < n; ++i) (*firsts_by_block)[i / block_size] += first_of[i] == i ? 1u : 0u;
+    if(extras != nullptr) {
+      for(std::size_t i = 0; i < n; ++i) {
+        extras->firsts_by_block[i / block_size] += first_of[i] == i ? 1u : 0u;
+        if(!is_finite_point(point(i))) extras->all_finite = false;
+      }
+    }
     return first_of;
   };
   if constexpr(!std::is_same<FT, double>::value) {
@@ -87,12 +106,16 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     // reads the point of a representative of its own partitions only, so that every point is read
     // and hashed once more whatever the number of rounds
     Uninitialized_vector<std::uint8_t> partition_of(n);
+    // the blocks that hold a NaN or an infinite coordinate (which the weld treats as any other)
+    std::vector<unsigned char> non_finite_in_block(blocks, 0);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
       std::uint32_t* count = representatives.data() + b * partitions;
       Fingerprint_table table(2 * (end - begin));
+      bool finite = true;
       for(std::size_t i = begin; i != end; ++i) {
         const Point& p = point(i);
         const double x = p.x(), y = p.y(), z = p.z();
+        finite = finite && std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
         const std::uint64_t hash = hash_of_coordinates(x, y, z);
         first_of[i] = table.find_or_insert(static_cast<std::uint32_t>(i), fingerprint(hash), [&](std::uint32_t j) {
           const Point& o = point(j);
@@ -103,7 +126,10 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
           partition_of[i] = static_cast<std::uint8_t>(partition(hash));
         }
       }
+      non_finite_in_block[b] = finite ? 0 : 1;
     });
+    if(extras != nullptr)
+      extras->all_finite = std::find(non_finite_in_block.begin(), non_finite_in_block.end(), 1) == non_finite_in_block.end();
 
     // 2. The representatives, partition by partition. Partition-major prefix sums: `place[b *
     // partitions + q]` is where block b writes its first representative of partition q.
@@ -172,7 +198,7 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
         else
           ++firsts;
       }
-      if(firsts_by_block != nullptr) (*firsts_by_block)[b] = firsts;
+      if(extras != nullptr) extras->firsts_by_block[b] = firsts;
     });
     return first_of;
   }
