@@ -81,7 +81,8 @@ TEST(ParallelExactWeld, ByBlocksGivesTheFirstPointOfTheSingleTable)
     }
     // the first points of every block, counted by the last pass when asked
     std::vector<std::size_t> expected_firsts(ST::internal::number_of_blocks(n), 0);
-    for(std::size_t i = 0; i < n; ++i) expected_firsts[i / ST::internal::default_block_size] += expected[i] == i ? 1 : 0;
+    for(std::size_t i = 0; i < n; ++i)
+      expected_firsts[i / ST::internal::default_block_size] += expected[i] == i ? 1 : 0;
     for(const std::size_t budget : {std::size_t(0), ST::internal::default_block_size, n / 3, n}) {
       SCOPED_TRACE("points: " + std::to_string(n) + ", budget: " + std::to_string(budget));
       const auto sequential = ST::internal::first_equal_points_by_blocks<CGAL::Sequential_tag>(n, point, budget);

@@ -129,7 +129,8 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
       non_finite_in_block[b] = finite ? 0 : 1;
     });
     if(extras != nullptr)
-      extras->all_finite = std::find(non_finite_in_block.begin(), non_finite_in_block.end(), 1) == non_finite_in_block.end();
+      extras->all_finite =
+        std::find(non_finite_in_block.begin(), non_finite_in_block.end(), 1) == non_finite_in_block.end();
 
     // 2. The representatives, partition by partition. Partition-major prefix sums: `place[b *
     // partitions + q]` is where block b writes its first representative of partition q.
