@@ -836,6 +836,29 @@ TEST(ParallelIndexTriangles, DuplicatesCollapsedTrianglesAndSignedZeros)
       EXPECT_EQ(t, std::vector<Triangle>(1, Triangle{0, 1, 0}));
     }
   });
+  // A hostile soup: every corner the same NaN (one hash, equal to nothing). The weld stops at the
+  // first one instead of probing its tables in quadratic time; the first corner is named.
+  const Point nan_point(std::nan(""), std::nan(""), std::nan(""));
+  const std::vector<std::array<Point, 3>> all_nan(400000, {nan_point, nan_point, nan_point});
+  const std::vector<Point> nan_points(1000000, nan_point);
+  for_each_thread_count([&](int) {
+    std::vector<Point> p;
+    std::vector<Triangle> t;
+    EXPECT_THROW(
+      try { ST::index_triangles<Parallel>(all_nan, p, t); } catch(const ST::Invalid_input& e) {
+        EXPECT_EQ(std::string(e.what()), "triangle 0, corner 0: non-finite coordinate");
+        throw;
+      },
+      ST::Invalid_input);
+    std::vector<Point> q = nan_points;
+    std::vector<Triangle> u(1, Triangle{0, 1, 2});
+    EXPECT_THROW(
+      try { ST::internal::merge_duplicate_points_and_map<Parallel>(q, u); } catch(const ST::Invalid_input& e) {
+        EXPECT_EQ(std::string(e.what()), "point 0 has a non-finite coordinate");
+        throw;
+      },
+      ST::Invalid_input);
+  });
 }
 
 // The binary STL written on threads: the same bytes (several chunks of facets, with a repeated

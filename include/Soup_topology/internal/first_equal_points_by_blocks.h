@@ -51,8 +51,8 @@ struct Exact_weld_extras
 {
   /// the number of first points (`first_of[i] == i`) in every block of `default_block_size` points
   std::vector<std::size_t> firsts_by_block;
-  /// `true` if every coordinate is finite (`is_finite_point()`): a NaN equals nothing, not even
-  /// itself, so that a NaN point is a first point of its own
+  /// `true` if every coordinate is finite (`is_finite_point()`); `false` if the weld stopped at a
+  /// NaN or an infinite coordinate (a NaN equals nothing, not even itself)
   bool all_finite = true;
 };
 
@@ -64,7 +64,10 @@ struct Exact_weld_extras
 /// one block. `key_budget`: the most representatives copied at once (0: a quarter of `n`, at
 /// least one block); the result does not depend on it. `extras`, if given, receives what
 /// `Exact_weld_extras` says (the first points counted by the last pass, the coordinates tested by
-/// the first).
+/// the first). With `extras`, a NaN or infinite coordinate stops the weld: `extras->all_finite`
+/// is `false` and the returned entries are not written (the caller refuses the soup). NaNs of
+/// one bit pattern share a hash and equal nothing, so that a table of many of them would be
+/// probed in quadratic time.
 template <class ConcurrencyTag, class PointAccess>
 Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, const PointAccess& point,
                                                                  std::size_t key_budget = 0,
@@ -78,15 +81,20 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     extras->firsts_by_block.assign(blocks, 0);
     extras->all_finite = true;
   }
-  // the one-table weld, what `extras` asks for found afterwards
+  // the one-table weld, the coordinates tested first and the first points counted afterwards
+  // when `extras` asks for them
   auto weld_in_one_table = [&] {
-    Uninitialized_vector<std::uint32_t> first_of = first_equal_points(n, point);
     if(extras != nullptr) {
       for(std::size_t i = 0; i < n; ++i) {
-        extras->firsts_by_block[i / block_size] += first_of[i] == i ? 1u : 0u;
-        if(!is_finite_point(point(i))) extras->all_finite = false;
+        if(!is_finite_point(point(i))) {
+          extras->all_finite = false;
+          return Uninitialized_vector<std::uint32_t>(n);
+        }
       }
     }
+    Uninitialized_vector<std::uint32_t> first_of = first_equal_points(n, point);
+    if(extras != nullptr)
+      for(std::size_t i = 0; i < n; ++i) extras->firsts_by_block[i / block_size] += first_of[i] == i ? 1u : 0u;
     return first_of;
   };
   if constexpr(!std::is_same<FT, double>::value) {
@@ -106,16 +114,18 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     // reads the point of a representative of its own partitions only, so that every point is read
     // and hashed once more whatever the number of rounds
     Uninitialized_vector<std::uint8_t> partition_of(n);
-    // the blocks that hold a NaN or an infinite coordinate (which the weld treats as any other)
+    // the blocks that met a NaN or an infinite coordinate (with `extras` only)
     std::vector<unsigned char> non_finite_in_block(blocks, 0);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
       std::uint32_t* count = representatives.data() + b * partitions;
       Fingerprint_table table(2 * (end - begin));
-      bool finite = true;
       for(std::size_t i = begin; i != end; ++i) {
         const Point& p = point(i);
         const double x = p.x(), y = p.y(), z = p.z();
-        finite = finite && std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+        if(extras != nullptr && !(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+          non_finite_in_block[b] = 1; // the soup is refused: the block stops (see above)
+          return;
+        }
         const std::uint64_t hash = hash_of_coordinates(x, y, z);
         first_of[i] = table.find_or_insert(static_cast<std::uint32_t>(i), fingerprint(hash), [&](std::uint32_t j) {
           const Point& o = point(j);
@@ -126,11 +136,12 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
           partition_of[i] = static_cast<std::uint8_t>(partition(hash));
         }
       }
-      non_finite_in_block[b] = finite ? 0 : 1;
     });
-    if(extras != nullptr)
+    if(extras != nullptr) {
       extras->all_finite =
         std::find(non_finite_in_block.begin(), non_finite_in_block.end(), 1) == non_finite_in_block.end();
+      if(!extras->all_finite) return first_of;
+    }
 
     // 2. The representatives, partition by partition. Partition-major prefix sums: `place[b *
     // partitions + q]` is where block b writes its first representative of partition q.
