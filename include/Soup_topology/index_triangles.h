@@ -83,6 +83,9 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   using Face = typename FaceRange::value_type;
   constexpr std::size_t block_size = default_block_size;
   Exact_weld_extras weld;
+  // (without the weld's last pass: the later corners below are renumbered in increasing order
+  // within their blocks, so that a corner reads the number of the entry it names)
+  weld.links_to_block_representatives = true;
   const Uninitialized_vector<std::uint32_t> first_of =
     first_equal_points_by_blocks<ConcurrencyTag>(corners, corner_point, 0, &weld);
   refuse_if_non_finite(weld, refuse_non_finite);
@@ -101,6 +104,8 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
     }
   });
   // every first corner has its number now: the later corners read it; blocks of whole triangles
+  // (three blocks of corners each: a corner's entry names a first corner or an earlier corner of
+  // its block of corners, numbered before it)
   const std::size_t m = corners / 3;
   std::vector<std::size_t> face_place(number_of_blocks(m, block_size), 0);
   for_each_block<ConcurrencyTag>(m, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
@@ -138,16 +143,18 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
                    Index_report& report, const RefuseNonFinite& refuse_non_finite)
 {
   using Face = typename FaceRange::value_type;
-  // first_of[i] is the first corner equal to corner i; it is overwritten in place by the index
-  // of the point of corner i (a first corner is read before any later one is renumbered).
+  // point_of[i] is i for the first corner of each point, else an earlier corner equal to corner i
+  // (`Exact_weld_extras::links_to_block_representatives`); it is overwritten in place by the
+  // index of the point of corner i (the entry a corner names is renumbered before it).
   Exact_weld_extras weld;
+  weld.links_to_block_representatives = true;
   Uninitialized_vector<std::uint32_t> point_of =
     first_equal_points_by_blocks<CGAL::Sequential_tag>(corners, corner_point, 0, &weld);
   refuse_if_non_finite(weld, refuse_non_finite);
-  // The points are counted first so that `points` holds exactly them, without the spare room
-  // of a vector grown one point at a time.
+  // The points are counted by the weld, so that `points` holds exactly them, without the spare
+  // room of a vector grown one point at a time.
   std::size_t distinct = 0;
-  for(std::size_t i = 0; i < corners; ++i) distinct += point_of[i] == i ? 1u : 0u;
+  for(const std::size_t firsts : weld.firsts_by_block) distinct += firsts;
   points.clear();
   points.reserve(distinct);
   for(std::size_t i = 0; i < corners; ++i) {

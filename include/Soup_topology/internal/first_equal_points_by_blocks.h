@@ -16,7 +16,8 @@
 //    increasing index order (the counts' prefix sums, partition-major, give every block its
 //    place); every partition is welded by a table of its own, reading the copies one after the
 //    other. The first representative of a class is its smallest index over the whole range.
-// 3. every point takes the class's first point from its block representative.
+// 3. every point takes the class's first point from its block representative (a caller that reads
+//    the entries in increasing order can follow the two links itself: `Exact_weld_extras`).
 // The single table of `first_equal_points()` misses the cache on nearly every point of a large
 // soup (a probe, and the coordinates of the point it finds); here only the copy of the
 // representatives does, and it writes in 256 streams. The copies take 32 bytes a representative;
@@ -54,6 +55,14 @@ struct Exact_weld_extras
   /// `true` if every coordinate is finite (`is_finite_point()`); `false` if the weld stopped at a
   /// NaN or an infinite coordinate (a NaN equals nothing, not even itself)
   bool all_finite = true;
+  /// set by the caller: `true` leaves out the weld's last pass (step 3 at the top of this file).
+  /// An entry `first_of[i] != i` then names a smaller index `r`: the first point of the class, or
+  /// a point of the same block of `default_block_size` points whose entry names the first point.
+  /// A caller that numbers the first points, then renumbers the other entries of each block in
+  /// increasing order from the entry each names, reads the class's number at either link.
+  /// The first points are the same (`first_of[i] == i`), and so are their counts by block, found
+  /// by the partitions' tables instead.
+  bool links_to_block_representatives = false;
 };
 
 /// `first_of[i]` = the smallest index j with `point(j) == point(i)`, for the `n` points
@@ -64,7 +73,9 @@ struct Exact_weld_extras
 /// one block. `key_budget`: the most representatives copied at once (0: a quarter of `n`, at
 /// least one block); the result does not depend on it. `extras`, if given, receives what
 /// `Exact_weld_extras` says (the first points counted by the last pass, the coordinates tested by
-/// the first). With `extras`, a NaN or infinite coordinate stops the weld: `extras->all_finite`
+/// the first), and may ask for the entries of later points as links to their block's
+/// representative instead (`Exact_weld_extras::links_to_block_representatives`, one pass fewer;
+/// the first points and their counts are the same). With `extras`, a NaN or infinite coordinate stops the weld: `extras->all_finite`
 /// is `false` and the returned entries are not written (the caller refuses the soup). NaNs of
 /// one bit pattern share a hash and equal nothing, so that a table of many of them would be
 /// probed in quadratic time.
@@ -161,6 +172,11 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     }
     if(key_budget == 0) key_budget = n / 4;
     key_budget = std::max({key_budget, block_size, std::size_t(1)});
+    // with the last pass left out, the first points of every block are counted by the partitions'
+    // tables: firsts_in[q * blocks + b], those of partition q in block b (a partition's row is
+    // written by its own task)
+    const bool count_in_partitions = extras != nullptr && extras->links_to_block_representatives;
+    std::vector<std::uint32_t> firsts_in(count_in_partitions ? partitions * blocks : 0, 0);
     struct Key { double x, y, z; std::uint32_t index, fingerprint; };
     Uninitialized_vector<Key> keys(std::min(key_budget, partition_begin[partitions]));
     for(std::size_t first = 0; first < partitions;) {
@@ -191,12 +207,21 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
             return k[o].x == key.x && k[o].y == key.y && k[o].z == key.z;
           });
           // (a representative not first of its class is written once, by its partition's task)
-          if(found != j) first_of[key.index] = k[found].index;
+          if(found != j)
+            first_of[key.index] = k[found].index;
+          else if(count_in_partitions)
+            ++firsts_in[(first + r) * blocks + key.index / block_size];
         }
       });
       first = last;
     }
 
+    if(count_in_partitions) {
+      std::vector<std::size_t>& firsts = extras->firsts_by_block;
+      for(std::size_t q = 0; q < partitions; ++q)
+        for(std::size_t b = 0; b < blocks; ++b) firsts[b] += firsts_in[q * blocks + b];
+      return first_of;
+    }
     // 3. A point other than its block's representative names that representative, below it in
     // the same block. A representative names the first point of its class now (itself, or a
     // point of an earlier block), which names itself: nothing read here is written by another
