@@ -90,6 +90,67 @@ TEST_P(ParallelRealMesh, LoopSubdivisionAndLimitPoints)
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ParallelRealMesh, ::testing::ValuesIn(real_meshes));
 
+TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
+{
+  // Level 0's edges are numbered by blocks of 16,384 triangles on several threads: a mesh of
+  // many blocks with holes (border edges), fins (non-manifold edges of three and four triangles)
+  // whose triangles are far from the triangles they meet, and the triangles shuffled, so that an
+  // edge's owner and its other halves lie in other blocks.
+  const Mesh_data m = load("clean/fandisk.off.xz");
+  std::vector<Point> points = m.points;
+  std::vector<Triangle> triangles = m.triangles;
+  soup_test::subdivide_midpoints(points, triangles);
+  soup_test::subdivide_midpoints(points, triangles); // about 100,000 triangles: 7 blocks
+  std::vector<Triangle> soup;
+  for(std::size_t t = 0; t < triangles.size(); ++t)
+    if(t % 997 != 5) soup.push_back(triangles[t]); // holes
+  std::size_t fins = 0;
+  for(std::size_t t = 0; t < triangles.size(); t += 1499) {
+    // one fin on edge 0 of t, two on edge 1 of every other one
+    const Triangle& tr = triangles[t];
+    const Point apex = CGAL::midpoint(points[tr[0]], points[tr[2]]) + (points[tr[1]] - points[tr[0]]);
+    points.push_back(apex);
+    soup.push_back({tr[0], tr[1], points.size() - 1});
+    ++fins;
+    if(t % 2 == 0) {
+      points.push_back(apex + (points[tr[2]] - points[tr[1]]));
+      soup.push_back({tr[2], tr[1], points.size() - 1});
+      points.push_back(apex + (points[tr[1]] - points[tr[2]]));
+      soup.push_back({tr[1], tr[2], points.size() - 1});
+      fins += 2;
+    }
+  }
+  shuffle_triangles(soup, 29);
+  ASSERT_GT(soup.size(), 6 * ST::internal::default_block_size);
+  ASSERT_GT(fins, 60u);
+  const ST::Adjacency_tables input_tables(soup, points.size());
+  ASSERT_GT(input_tables.non_manifold_edges().size(), 60u);
+  ASSERT_GT(input_tables.number_of_border_edges(), 200u);
+  auto ep = points;
+  auto et = soup;
+  ST::loop_subdivision(ep, et, CGAL::parameters::number_of_iterations(2));
+  const auto expected_limit = bits(ST::loop_limit_points(points, soup));
+  // level 0 itself, the second halves of crease edges included (which no rule reads)
+  ST::internal::Loop_level expected_level;
+  expected_level.initialize(input_tables);
+  for_each_thread_count([&](int) {
+    ST::internal::Loop_level level;
+    level.initialize<Parallel>(input_tables);
+    EXPECT_EQ(level.number_of_edges, expected_level.number_of_edges);
+    EXPECT_TRUE(level.edge_of == expected_level.edge_of);
+    EXPECT_TRUE(level.half1 == expected_level.half1);
+    EXPECT_TRUE(level.half2 == expected_level.half2);
+    EXPECT_TRUE(level.count == expected_level.count);
+    EXPECT_EQ(level.kind, expected_level.kind);
+    auto p = points;
+    auto t = soup;
+    ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(2));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+    EXPECT_EQ(bits(ST::loop_limit_points<Parallel>(points, soup)), expected_limit);
+  });
+}
+
 
 /// `triangles` with some repeated (in both orientations, some three times more), some reversed,
 /// every triangle rotated, all shuffled.

@@ -109,36 +109,35 @@ struct Loop_level
   }
 
   /// level 0: the edge ids from the edge-neighbor table, the vertex kinds from the crease
-  /// edges and a walk around each vertex (the walks in parallel with the tag).
+  /// edges and a walk around each vertex (the walks in parallel with the tag). An edge is
+  /// numbered at its first half-edge, that of the smallest triangle that carries it, in the order
+  /// of the triangles; on several threads the edges are numbered by blocks of triangles (counted,
+  /// then numbered from the counts' prefix sums), which gives the same numbers.
   template <class ConcurrencyTag = CGAL::Sequential_tag>
   void initialize(const Adjacency_tables& adj)
   {
     using size_type = Adjacency_tables::size_type;
     const std::size_t m = adj.number_of_triangles(), n = adj.number_of_vertices();
     triangles.assign(adj.triangles().begin(), adj.triangles().end());
-    edge_of.assign(3 * m, none);
-    number_of_edges = 0;
-    std::vector<size_type> around;
-    for(size_type t = 0; t < m; ++t)
-      for(int i = 0; i < 3; ++i) {
-        const size_type u = adj.neighbor(t, i);
-        size_type owner = t;
-        if(u == Adjacency_tables::non_manifold_edge) {
-          around.clear();
-          adj.triangles_around_edge(t, i, std::back_inserter(around));
-          owner = std::min(t, around.front());
-        } else if(u != Adjacency_tables::border_edge) {
-          owner = std::min(t, u);
+    if(runs_on_several_threads<ConcurrencyTag>()) {
+      number_edges_by_blocks<ConcurrencyTag>(adj);
+    } else {
+      edge_of.assign(3 * m, none);
+      number_of_edges = 0;
+      std::vector<size_type> around;
+      for(size_type t = 0; t < m; ++t)
+        for(int i = 0; i < 3; ++i) {
+          const size_type owner = owner_of_edge(adj, t, i, around);
+          Index& id = edge_of[3 * std::size_t(t) + std::size_t(i)];
+          if(owner == t) {
+            id = static_cast<Index>(number_of_edges++);
+          } else {
+            const int j = adj.edge_index(owner, adj.vertex(t, i), adj.vertex(t, (i + 1) % 3));
+            id = edge_of[3 * std::size_t(owner) + std::size_t(j)];
+          }
         }
-        Index& id = edge_of[3 * std::size_t(t) + std::size_t(i)];
-        if(owner == t) {
-          id = static_cast<Index>(number_of_edges++);
-        } else {
-          const int j = adj.edge_index(owner, adj.vertex(t, i), adj.vertex(t, (i + 1) % 3));
-          id = edge_of[3 * std::size_t(owner) + std::size_t(j)];
-        }
-      }
-    compute_halves();
+      compute_halves();
+    }
 
     std::vector<std::uint8_t> creases(n, 0);
     for(Index e = 0; e < number_of_edges; ++e)
@@ -151,6 +150,87 @@ struct Loop_level
       if(adj.degree(v) == 0) return;
       if(creases[v] == 2) kind[v] = Loop_vertex_kind::CREASE;
       else if(creases[v] == 0 && is_single_fan(adj, v)) kind[v] = Loop_vertex_kind::SMOOTH;
+    });
+  }
+
+  /// the smallest triangle that carries edge `i` of triangle `t` (`t` itself or a neighbour);
+  /// `around` is scratch space.
+  static Adjacency_tables::size_type owner_of_edge(const Adjacency_tables& adj, Adjacency_tables::size_type t, int i,
+                                                   std::vector<Adjacency_tables::size_type>& around)
+  {
+    const Adjacency_tables::size_type u = adj.neighbor(t, i);
+    if(u == Adjacency_tables::border_edge) return t;
+    if(u != Adjacency_tables::non_manifold_edge) return std::min(t, u);
+    around.clear();
+    adj.triangles_around_edge(t, i, std::back_inserter(around)); // in increasing order
+    return std::min(t, around.front());
+  }
+
+  /// `edge_of`, `number_of_edges` and the halves of level 0 as the sequential pass of
+  /// `initialize()` and `compute_halves()` give them, by blocks of triangles on TBB's threads:
+  /// the edges owned by each block counted; then numbered in the block from the counts' prefix
+  /// sums, each with its first half (its owner's), and, for a border or non-manifold edge, its
+  /// second half and count; then the other half-edges take their owner's number, and the second
+  /// half of a manifold edge is written by its second triangle. Every entry is written once.
+  template <class ConcurrencyTag>
+  void number_edges_by_blocks(const Adjacency_tables& adj)
+  {
+    using size_type = Adjacency_tables::size_type;
+    const std::size_t m = adj.number_of_triangles();
+    edge_of.resize(3 * m); // every entry written below
+    std::vector<std::size_t> owned(number_of_blocks(m), 0);
+    for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::vector<size_type> around;
+      std::size_t c = 0;
+      for(std::size_t t = begin; t != end; ++t)
+        for(int i = 0; i < 3; ++i)
+          c += owner_of_edge(adj, static_cast<size_type>(t), i, around) == t ? 1u : 0u;
+      owned[b] = c;
+    });
+    number_of_edges = exclusive_prefix_sums(owned);
+    half1.resize(number_of_edges); // every entry written below
+    half2.resize(number_of_edges);
+    count.resize(number_of_edges);
+    for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::vector<size_type> around;
+      std::size_t next = owned[b];
+      for(std::size_t t = begin; t != end; ++t)
+        for(int i = 0; i < 3; ++i) {
+          const size_type tt = static_cast<size_type>(t);
+          if(owner_of_edge(adj, tt, i, around) != tt) continue;
+          const Index id = static_cast<Index>(next++);
+          const std::size_t h = 3 * t + std::size_t(i);
+          edge_of[h] = id;
+          half1[id] = static_cast<Index>(h);
+          const size_type u = adj.neighbor(tt, i);
+          if(u == Adjacency_tables::border_edge) {
+            half2[id] = none;
+            count[id] = 1;
+          } else if(u == Adjacency_tables::non_manifold_edge) {
+            // `around`: the other triangles of the edge, in increasing order (from `owner_of_edge()`)
+            const size_type second = around.front();
+            const int j = adj.edge_index(second, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
+            half2[id] = static_cast<Index>(3 * std::size_t(second) + std::size_t(j));
+            count[id] = static_cast<std::uint8_t>(std::min<std::size_t>(3, around.size() + 1));
+          } else {
+            count[id] = 2; // its second half is written below, by its other triangle
+          }
+        }
+    });
+    for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::vector<size_type> around;
+      for(std::size_t t = begin; t != end; ++t)
+        for(int i = 0; i < 3; ++i) {
+          const size_type tt = static_cast<size_type>(t);
+          const size_type owner = owner_of_edge(adj, tt, i, around);
+          if(owner == tt) continue;
+          const int j = adj.edge_index(owner, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
+          const Index id = edge_of[3 * std::size_t(owner) + std::size_t(j)];
+          edge_of[3 * t + std::size_t(i)] = id;
+          const size_type u = adj.neighbor(tt, i);
+          if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge)
+            half2[id] = static_cast<Index>(3 * t + std::size_t(i));
+        }
     });
   }
 
