@@ -95,6 +95,25 @@ TEST(ParallelExactWeld, ByBlocksGivesTheFirstPointOfTheSingleTable)
         EXPECT_EQ(std::vector<std::uint32_t>(parallel.begin(), parallel.end()), expected);
         EXPECT_EQ(extras.firsts_by_block, expected_firsts);
         EXPECT_TRUE(extras.all_finite);
+        // without the last pass: the same first points and counts; every other entry names a
+        // smaller index, the class's first or a point of its block that names the first
+        ST::internal::Exact_weld_extras links;
+        links.links_to_block_representatives = true;
+        const auto linked = ST::internal::first_equal_points_by_blocks<Parallel>(n, point, budget, &links);
+        EXPECT_EQ(links.firsts_by_block, expected_firsts);
+        std::size_t wrong = 0, through_a_representative = 0;
+        for(std::size_t i = 0; i < n; ++i) {
+          const std::uint32_t r = linked[i];
+          if(r == expected[i]) continue;
+          ++through_a_representative;
+          const bool good = r < i && r / ST::internal::default_block_size == i / ST::internal::default_block_size &&
+                            linked[r] == expected[i];
+          wrong += good ? 0 : 1;
+        }
+        EXPECT_EQ(wrong, 0u);
+        if(budget == 0) {
+          EXPECT_GT(through_a_representative, 0u); // (the links are taken: the test sees them)
+        }
       });
     }
     // a range of one block is welded by one table: its first points counted too
