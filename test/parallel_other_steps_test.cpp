@@ -90,6 +90,48 @@ TEST_P(ParallelRealMesh, LoopSubdivisionAndLimitPoints)
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ParallelRealMesh, ::testing::ValuesIn(real_meshes));
 
+TEST(ParallelLoopSubdivision, FanOfManyFinsOnOneEdge)
+{
+  // 100,000 triangles on one edge: the halves of a non-manifold edge are found by one sort, not
+  // by a search of the triangles around each of them (quadratic: minutes for this fan).
+  const std::size_t k = 100000;
+  std::vector<Point> points = {Point(0, 0, 0), Point(0, 0, 1)};
+  std::vector<Triangle> fan;
+  for(std::size_t j = 0; j < k; ++j) {
+    const double a = 6.283185307179586 * double(j) / double(k);
+    points.push_back(Point(std::cos(a), std::sin(a), 0.5));
+    fan.push_back({j % 2 == 0 ? 0u : 1u, j % 2 == 0 ? 1u : 0u, points.size() - 1}); // both directions
+  }
+  const ST::Adjacency_tables tables(fan, points.size());
+  ST::internal::Loop_level expected;
+  expected.initialize(tables);
+  // the shared edge is edge 0 of triangle 0, carried by every triangle; each fin adds two edges
+  EXPECT_EQ(expected.number_of_edges, 2 * k + 1);
+  EXPECT_EQ(expected.edge_of[0], 0u);
+  EXPECT_EQ(expected.half1[0], 0u);
+  EXPECT_EQ(expected.half2[0], 3u);
+  EXPECT_EQ(expected.count[0], 3u);
+  EXPECT_EQ(expected.edge_of[3 * (k - 1)], 0u);
+  auto ep = points;
+  auto et = fan;
+  ST::loop_subdivision(ep, et);
+  EXPECT_EQ(et.size(), 4 * k);
+  for_each_thread_count([&](int) {
+    ST::internal::Loop_level level;
+    level.initialize<Parallel>(tables);
+    EXPECT_EQ(level.number_of_edges, expected.number_of_edges);
+    EXPECT_TRUE(level.edge_of == expected.edge_of);
+    EXPECT_TRUE(level.half1 == expected.half1);
+    EXPECT_TRUE(level.half2 == expected.half2);
+    EXPECT_TRUE(level.count == expected.count);
+    auto p = points;
+    auto t = fan;
+    ST::loop_subdivision<Parallel>(p, t);
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+  });
+}
+
 TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
 {
   // Level 0's edges are numbered by blocks of 16,384 triangles on several threads: a mesh of

@@ -119,15 +119,15 @@ struct Loop_level
     using size_type = Adjacency_tables::size_type;
     const std::size_t m = adj.number_of_triangles(), n = adj.number_of_vertices();
     triangles.assign(adj.triangles().begin(), adj.triangles().end());
+    const Non_manifold_halves non_manifold = non_manifold_halves<ConcurrencyTag>(adj);
     if(runs_on_several_threads<ConcurrencyTag>()) {
-      number_edges_by_blocks<ConcurrencyTag>(adj);
+      number_edges_by_blocks<ConcurrencyTag>(adj, non_manifold);
     } else {
       edge_of.assign(3 * m, none);
       number_of_edges = 0;
-      std::vector<size_type> around;
       for(size_type t = 0; t < m; ++t)
         for(int i = 0; i < 3; ++i) {
-          const size_type owner = owner_of_edge(adj, t, i, around);
+          const size_type owner = owner_of_edge(adj, non_manifold, t, i);
           Index& id = edge_of[3 * std::size_t(t) + std::size_t(i)];
           if(owner == t) {
             id = static_cast<Index>(number_of_edges++);
@@ -153,17 +153,68 @@ struct Loop_level
     });
   }
 
-  /// the smallest triangle that carries edge `i` of triangle `t` (`t` itself or a neighbour);
-  /// `around` is scratch space.
-  static Adjacency_tables::size_type owner_of_edge(const Adjacency_tables& adj, Adjacency_tables::size_type t, int i,
-                                                   std::vector<Adjacency_tables::size_type>& around)
+  /// The half-edges of the non-manifold edges, each with the first two halves of its edge (those
+  /// of its two smallest triangles) and the number of halves that carry it (saturated at 3),
+  /// found by one sort of all of them: a search of the triangles around each such half would take
+  /// time quadratic in the number of triangles on one edge (a fan of many fins).
+  struct Non_manifold_halves
+  {
+    struct Entry { Index half, first, second; std::uint8_t count; };
+    std::vector<Entry> by_half; // in increasing order of `half`
+
+    /// the entry of half-edge `h`, a half of a non-manifold edge
+    const Entry& of(std::size_t h) const
+    {
+      return *std::lower_bound(by_half.begin(), by_half.end(), h,
+                               [](const Entry& e, std::size_t half) { return e.half < half; });
+    }
+  };
+
+  template <class ConcurrencyTag>
+  static Non_manifold_halves non_manifold_halves(const Adjacency_tables& adj)
+  {
+    using size_type = Adjacency_tables::size_type;
+    const std::size_t m = adj.number_of_triangles();
+    // (smaller end, larger end, half), by blocks of triangles, then sorted
+    std::vector<std::vector<std::array<Index, 3>>> found(number_of_blocks(m));
+    for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t != end; ++t)
+        for(int i = 0; i < 3; ++i)
+          if(adj.neighbor(static_cast<size_type>(t), i) == Adjacency_tables::non_manifold_edge) {
+            const size_type tt = static_cast<size_type>(t);
+            const Index a = adj.vertex(tt, i), c = adj.vertex(tt, (i + 1) % 3);
+            found[b].push_back({std::min(a, c), std::max(a, c), static_cast<Index>(3 * t + std::size_t(i))});
+          }
+    });
+    std::vector<std::array<Index, 3>> halves;
+    concatenate_in_block_order(found, halves);
+    std::sort(halves.begin(), halves.end());
+    Non_manifold_halves out;
+    out.by_half.reserve(halves.size());
+    for(std::size_t g = 0; g < halves.size();) {
+      std::size_t end = g + 1;
+      while(end < halves.size() && halves[end][0] == halves[g][0] && halves[end][1] == halves[g][1]) ++end;
+      // (a non-manifold edge has at least three halves)
+      const Index second = end - g > 1 ? halves[g + 1][2] : none;
+      const auto count = static_cast<std::uint8_t>(std::min<std::size_t>(3, end - g));
+      for(std::size_t k = g; k < end; ++k) out.by_half.push_back({halves[k][2], halves[g][2], second, count});
+      g = end;
+    }
+    std::sort(out.by_half.begin(), out.by_half.end(),
+              [](const typename Non_manifold_halves::Entry& x, const typename Non_manifold_halves::Entry& y) {
+                return x.half < y.half;
+              });
+    return out;
+  }
+
+  /// the smallest triangle that carries edge `i` of triangle `t` (`t` itself or a neighbour)
+  static Adjacency_tables::size_type owner_of_edge(const Adjacency_tables& adj, const Non_manifold_halves& non_manifold,
+                                                   Adjacency_tables::size_type t, int i)
   {
     const Adjacency_tables::size_type u = adj.neighbor(t, i);
     if(u == Adjacency_tables::border_edge) return t;
     if(u != Adjacency_tables::non_manifold_edge) return std::min(t, u);
-    around.clear();
-    adj.triangles_around_edge(t, i, std::back_inserter(around)); // in increasing order
-    return std::min(t, around.front());
+    return static_cast<Adjacency_tables::size_type>(non_manifold.of(3 * std::size_t(t) + std::size_t(i)).first / 3);
   }
 
   /// `edge_of`, `number_of_edges` and the halves of level 0 as the sequential pass of
@@ -173,18 +224,17 @@ struct Loop_level
   /// second half and count; then the other half-edges take their owner's number, and the second
   /// half of a manifold edge is written by its second triangle. Every entry is written once.
   template <class ConcurrencyTag>
-  void number_edges_by_blocks(const Adjacency_tables& adj)
+  void number_edges_by_blocks(const Adjacency_tables& adj, const Non_manifold_halves& non_manifold)
   {
     using size_type = Adjacency_tables::size_type;
     const std::size_t m = adj.number_of_triangles();
     edge_of.resize(3 * m); // every entry written below
     std::vector<std::size_t> owned(number_of_blocks(m), 0);
     for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      std::vector<size_type> around;
       std::size_t c = 0;
       for(std::size_t t = begin; t != end; ++t)
         for(int i = 0; i < 3; ++i)
-          c += owner_of_edge(adj, static_cast<size_type>(t), i, around) == t ? 1u : 0u;
+          c += owner_of_edge(adj, non_manifold, static_cast<size_type>(t), i) == t ? 1u : 0u;
       owned[b] = c;
     });
     number_of_edges = exclusive_prefix_sums(owned);
@@ -192,12 +242,11 @@ struct Loop_level
     half2.resize(number_of_edges);
     count.resize(number_of_edges);
     for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      std::vector<size_type> around;
       std::size_t next = owned[b];
       for(std::size_t t = begin; t != end; ++t)
         for(int i = 0; i < 3; ++i) {
           const size_type tt = static_cast<size_type>(t);
-          if(owner_of_edge(adj, tt, i, around) != tt) continue;
+          if(owner_of_edge(adj, non_manifold, tt, i) != tt) continue;
           const Index id = static_cast<Index>(next++);
           const std::size_t h = 3 * t + std::size_t(i);
           edge_of[h] = id;
@@ -207,22 +256,19 @@ struct Loop_level
             half2[id] = none;
             count[id] = 1;
           } else if(u == Adjacency_tables::non_manifold_edge) {
-            // `around`: the other triangles of the edge, in increasing order (from `owner_of_edge()`)
-            const size_type second = around.front();
-            const int j = adj.edge_index(second, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
-            half2[id] = static_cast<Index>(3 * std::size_t(second) + std::size_t(j));
-            count[id] = static_cast<std::uint8_t>(std::min<std::size_t>(3, around.size() + 1));
+            const typename Non_manifold_halves::Entry& entry = non_manifold.of(h);
+            half2[id] = entry.second;
+            count[id] = entry.count;
           } else {
             count[id] = 2; // its second half is written below, by its other triangle
           }
         }
     });
     for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
-      std::vector<size_type> around;
       for(std::size_t t = begin; t != end; ++t)
         for(int i = 0; i < 3; ++i) {
           const size_type tt = static_cast<size_type>(t);
-          const size_type owner = owner_of_edge(adj, tt, i, around);
+          const size_type owner = owner_of_edge(adj, non_manifold, tt, i);
           if(owner == tt) continue;
           const int j = adj.edge_index(owner, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
           const Index id = edge_of[3 * std::size_t(owner) + std::size_t(j)];

@@ -75,10 +75,10 @@ struct Exact_weld_extras
 /// `Exact_weld_extras` says (the first points counted by the last pass, the coordinates tested by
 /// the first), and may ask for the entries of later points as links to their block's
 /// representative instead (`Exact_weld_extras::links_to_block_representatives`, one pass fewer;
-/// the first points and their counts are the same). With `extras`, a NaN or infinite coordinate stops the weld: `extras->all_finite`
-/// is `false` and the returned entries are not written (the caller refuses the soup). NaNs of
-/// one bit pattern share a hash and equal nothing, so that a table of many of them would be
-/// probed in quadratic time.
+/// the first points and their counts are the same). With `extras`, a NaN or infinite coordinate
+/// stops the weld: `extras->all_finite` is `false` and the returned entries are not written (the
+/// caller refuses the soup). NaNs of one bit pattern share a hash and equal nothing, so that a
+/// table of many of them would be probed in quadratic time.
 template <class ConcurrencyTag, class PointAccess>
 Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, const PointAccess& point,
                                                                  std::size_t key_budget = 0,
