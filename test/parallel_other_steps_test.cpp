@@ -90,6 +90,19 @@ TEST_P(ParallelRealMesh, LoopSubdivisionAndLimitPoints)
 
 INSTANTIATE_TEST_SUITE_P(Meshes, ParallelRealMesh, ::testing::ValuesIn(real_meshes));
 
+// Loop's level 0 built with the parallel tag from `tables` is `expected` (the sequential one).
+void expect_parallel_level_0(const ST::Adjacency_tables& tables, const ST::internal::Loop_level& expected)
+{
+  ST::internal::Loop_level level;
+  level.initialize<Parallel>(tables);
+  EXPECT_EQ(level.number_of_edges, expected.number_of_edges);
+  EXPECT_TRUE(level.edge_of == expected.edge_of);
+  EXPECT_TRUE(level.half1 == expected.half1);
+  EXPECT_TRUE(level.half2 == expected.half2);
+  EXPECT_TRUE(level.count == expected.count);
+  EXPECT_EQ(level.kind, expected.kind);
+}
+
 TEST(ParallelLoopSubdivision, FanOfManyFinsOnOneEdge)
 {
   // 100,000 triangles on one edge: the halves of a non-manifold edge are found by one sort, not
@@ -117,13 +130,7 @@ TEST(ParallelLoopSubdivision, FanOfManyFinsOnOneEdge)
   ST::loop_subdivision(ep, et);
   EXPECT_EQ(et.size(), 4 * k);
   for_each_thread_count([&](int) {
-    ST::internal::Loop_level level;
-    level.initialize<Parallel>(tables);
-    EXPECT_EQ(level.number_of_edges, expected.number_of_edges);
-    EXPECT_TRUE(level.edge_of == expected.edge_of);
-    EXPECT_TRUE(level.half1 == expected.half1);
-    EXPECT_TRUE(level.half2 == expected.half2);
-    EXPECT_TRUE(level.count == expected.count);
+    expect_parallel_level_0(tables, expected);
     auto p = points;
     auto t = fan;
     ST::loop_subdivision<Parallel>(p, t);
@@ -176,14 +183,7 @@ TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
   ST::internal::Loop_level expected_level;
   expected_level.initialize(input_tables);
   for_each_thread_count([&](int) {
-    ST::internal::Loop_level level;
-    level.initialize<Parallel>(input_tables);
-    EXPECT_EQ(level.number_of_edges, expected_level.number_of_edges);
-    EXPECT_TRUE(level.edge_of == expected_level.edge_of);
-    EXPECT_TRUE(level.half1 == expected_level.half1);
-    EXPECT_TRUE(level.half2 == expected_level.half2);
-    EXPECT_TRUE(level.count == expected_level.count);
-    EXPECT_EQ(level.kind, expected_level.kind);
+    expect_parallel_level_0(input_tables, expected_level);
     auto p = points;
     auto t = soup;
     ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(2));
