@@ -139,23 +139,17 @@ TEST(ParallelLoopSubdivision, FanOfManyFinsOnOneEdge)
   });
 }
 
-TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
+/// the triangles of `triangles` with holes (one triangle in 997 left out) and fins (non-manifold
+/// edges of three and four triangles: one fin on edge 0 of every 1499th triangle, two on its edge
+/// 1 every other time), their apexes added to `points`, shuffled; `fins` receives their number.
+std::vector<Triangle> with_holes_and_fins(std::vector<Point>& points, const std::vector<Triangle>& triangles,
+                                          std::size_t& fins)
 {
-  // Level 0's edges are numbered by blocks of 16,384 triangles on several threads: a mesh of
-  // many blocks with holes (border edges), fins (non-manifold edges of three and four triangles)
-  // whose triangles are far from the triangles they meet, and the triangles shuffled, so that an
-  // edge's owner and its other halves lie in other blocks.
-  const Mesh_data m = load("clean/fandisk.off.xz");
-  std::vector<Point> points = m.points;
-  std::vector<Triangle> triangles = m.triangles;
-  soup_test::subdivide_midpoints(points, triangles);
-  soup_test::subdivide_midpoints(points, triangles); // about 100,000 triangles: 7 blocks
   std::vector<Triangle> soup;
   for(std::size_t t = 0; t < triangles.size(); ++t)
     if(t % 997 != 5) soup.push_back(triangles[t]); // holes
-  std::size_t fins = 0;
+  fins = 0;
   for(std::size_t t = 0; t < triangles.size(); t += 1499) {
-    // one fin on edge 0 of t, two on edge 1 of every other one
     const Triangle& tr = triangles[t];
     const Point apex = CGAL::midpoint(points[tr[0]], points[tr[2]]) + (points[tr[1]] - points[tr[0]]);
     points.push_back(apex);
@@ -170,6 +164,22 @@ TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
     }
   }
   shuffle_triangles(soup, 29);
+  return soup;
+}
+
+TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
+{
+  // Level 0's edges are numbered by blocks of 16,384 triangles on several threads: a mesh of
+  // many blocks with holes (border edges), fins (non-manifold edges of three and four triangles)
+  // whose triangles are far from the triangles they meet, and the triangles shuffled, so that an
+  // edge's owner and its other halves lie in other blocks.
+  const Mesh_data m = load("clean/fandisk.off.xz");
+  std::vector<Point> points = m.points;
+  std::vector<Triangle> triangles = m.triangles;
+  soup_test::subdivide_midpoints(points, triangles);
+  soup_test::subdivide_midpoints(points, triangles); // about 100,000 triangles: 7 blocks
+  std::size_t fins = 0;
+  const std::vector<Triangle> soup = with_holes_and_fins(points, triangles, fins);
   ASSERT_GT(soup.size(), 6 * ST::internal::default_block_size);
   ASSERT_GT(fins, 60u);
   const ST::Adjacency_tables input_tables(soup, points.size());
@@ -193,6 +203,69 @@ TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
   });
 }
 
+// The ring rows of `level` list, for every vertex, the edges whose other ends the sequential
+// smoothing adds to it, in the order in which it adds them, with those other ends; returns the
+// number of vertices whose row differs.
+std::size_t ring_rows_unlike_sequential_sums(const ST::internal::Loop_level& level)
+{
+  using Level = ST::internal::Loop_level;
+  using Kind = ST::internal::Loop_vertex_kind;
+  const std::size_t n = level.kind.size();
+  if(!level.has_ring_rows(n)) return n;
+  std::vector<std::vector<std::pair<Level::Index, Level::Index>>> sums(n);
+  for(Level::Index e = 0; e < level.number_of_edges; ++e) {
+    const Level::Index a = level.first_vertex(e), b = level.second_vertex(e);
+    const Kind kind_of_edge = level.is_crease(e) ? Kind::CREASE : Kind::SMOOTH;
+    if(level.kind[a] == kind_of_edge) sums[a].push_back({e, b});
+    if(level.kind[b] == kind_of_edge) sums[b].push_back({e, a});
+  }
+  std::size_t unlike = 0;
+  for(std::size_t v = 0; v < n; ++v) {
+    std::vector<std::pair<Level::Index, Level::Index>> row;
+    for(std::size_t j = level.ring_first[v]; j != level.ring_first[v + 1]; ++j)
+      row.push_back({level.ring[j].edge, level.ring[j].other});
+    if(row != sums[v]) ++unlike;
+  }
+  return unlike;
+}
+
+TEST(ParallelLoopSubdivision, RingRowsListTheSequentialSumsAtEveryLevel)
+{
+  // The smoothing on several threads sums the ring of every vertex over its row: built at level 0
+  // from the tables, carried to the next levels by refine(). Every row of levels 0 to 3 against
+  // the sums of the sequential pass, on a mesh with borders, fins, creases and corners; then three
+  // levels of subdivision against the sequential ones (the third reads the edges of level 1's rows).
+  const Mesh_data m = load("clean/fandisk.off.xz");
+  std::vector<Point> points = m.points;
+  std::size_t fins = 0;
+  const std::vector<Triangle> soup = with_holes_and_fins(points, m.triangles, fins);
+  ASSERT_GT(fins, 10u);
+  const ST::Adjacency_tables tables(soup, points.size());
+  ASSERT_GT(tables.non_manifold_edges().size(), 10u);
+  auto ep = points;
+  auto et = soup;
+  ST::loop_subdivision(ep, et, CGAL::parameters::number_of_iterations(3));
+  for_each_thread_count([&](int) {
+    ST::internal::Loop_level level;
+    level.initialize<Parallel>(tables);
+    level.build_ring_rows<Parallel>(tables);
+    std::size_t kinds[3] = {0, 0, 0};
+    for(const ST::internal::Loop_vertex_kind k : level.kind) ++kinds[std::size_t(k)];
+    EXPECT_GT(kinds[std::size_t(ST::internal::Loop_vertex_kind::CREASE)], 40u);
+    EXPECT_GT(kinds[std::size_t(ST::internal::Loop_vertex_kind::CORNER)], 10u);
+    EXPECT_EQ(ring_rows_unlike_sequential_sums(level), 0u);
+    for(int k = 1; k <= 3; ++k) {
+      level.refine<Parallel>(level.kind.size());
+      EXPECT_EQ(ring_rows_unlike_sequential_sums(level), 0u) << "level " << k;
+    }
+    ASSERT_GT(level.number_of_edges, 2 * ST::internal::default_block_size); // refined by several blocks
+    auto p = points;
+    auto t = soup;
+    ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(3));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+  });
+}
 
 /// `triangles` with some repeated (in both orientations, some three times more), some reversed,
 /// every triangle rotated, all shuffled.

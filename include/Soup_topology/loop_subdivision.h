@@ -26,7 +26,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -89,6 +88,14 @@ struct Loop_level
   Uninitialized_vector<std::uint8_t> count;   // per edge, saturated at 3
   std::vector<Loop_vertex_kind> kind;
   std::size_t number_of_edges = 0;
+  // The ring rows, for the smoothing on several threads only (empty otherwise): the edges of
+  // vertex `v` that its rule sums, in increasing order (every edge of a smooth vertex, the two
+  // crease edges of a crease vertex, none for a corner), each with its other end, are
+  // `ring[ring_first[v]] .. ring[ring_first[v + 1] - 1]`. Built from the vertex rows of the
+  // adjacency tables (`build_ring_rows()`), then carried from level to level by `refine()`.
+  struct Ring_entry { Index edge, other; };
+  Uninitialized_vector<std::size_t> ring_first;
+  Uninitialized_vector<Ring_entry> ring;
 
   bool is_crease(Index e) const { return count[e] != 2; }
   Index first_vertex(Index e) const { return triangles[half1[e] / 3][half1[e] % 3]; }
@@ -280,6 +287,49 @@ struct Loop_level
     });
   }
 
+  /// `true` if the ring rows of the `n` vertices of this level are there (see `ring_first`).
+  bool has_ring_rows(std::size_t n) const { return ring_first.size() == n + 1; }
+
+  /// the ring rows of level 0 (after `initialize()`), vertex by vertex on TBB's threads with the
+  /// tag. A smooth vertex has as many edges as triangles (it has no crease edge), a crease vertex
+  /// two. The edges of `v` are those of the triangles around it that are numbered in that triangle
+  /// (its first half is there: the edge is not shared with a smaller triangle), met in increasing
+  /// order of the triangles (rows of the tables) and of the edges in a triangle: the order in
+  /// which `initialize()` numbered them. None is sorted.
+  template <class ConcurrencyTag = CGAL::Sequential_tag>
+  void build_ring_rows(const Adjacency_tables& adj)
+  {
+    using size_type = Adjacency_tables::size_type;
+    const std::size_t n = kind.size();
+    ring_first.resize(n + 1); // every entry written below
+    ring_first[0] = 0;
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t v) {
+      const Loop_vertex_kind k = kind[v];
+      ring_first[v + 1] = k == Loop_vertex_kind::SMOOTH ? adj.degree(static_cast<size_type>(v))
+                                                      : (k == Loop_vertex_kind::CREASE ? 2 : 0);
+    });
+    for(std::size_t v = 0; v < n; ++v) ring_first[v + 1] += ring_first[v];
+    ring.resize(ring_first[n]); // every entry written below
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+      const size_type v = static_cast<size_type>(i);
+      if(kind[v] == Loop_vertex_kind::CORNER) return;
+      const bool crease = kind[v] == Loop_vertex_kind::CREASE;
+      Ring_entry* out = ring.data() + ring_first[v];
+      for(const size_type t : adj.triangles_around_vertex(v)) {
+        const int iv = adj.local_index(t, v), ip = (iv + 2) % 3; // the edges (v, next) and (previous, v)
+        for(const int j : {std::min(iv, ip), std::max(iv, ip)}) {
+          const size_type u = adj.neighbor(t, j);
+          const std::size_t h = 3 * std::size_t(t) + std::size_t(j);
+          const bool numbered_here = u == Adjacency_tables::border_edge ||
+                                     (u == Adjacency_tables::non_manifold_edge ? half1[edge_of[h]] == h : t < u);
+          if(!numbered_here || (u >= Adjacency_tables::non_manifold_edge) != crease) continue;
+          *out++ = {edge_of[h], j == iv ? adj.vertex(t, (iv + 1) % 3) : adj.vertex(t, ip)};
+        }
+      }
+      CGAL_assertion(out == ring.data() + ring_first[v + 1]);
+    });
+  }
+
   /// `true` if walking across the (manifold) edges around `v` visits all its triangles.
   static bool is_single_fan(const Adjacency_tables& adj, Adjacency_tables::size_type v)
   {
@@ -391,12 +441,71 @@ struct Loop_level
     for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
       kind[n + e] = is_crease(static_cast<Index>(e)) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH;
     });
+    if(has_ring_rows(n)) refine_ring_rows<ConcurrencyTag>(n);
     edge_of.swap(child_edges);
     number_of_edges = E2;
     triangles.swap(children);
     half1.swap(h1);
     half2.swap(h2);
     count.swap(c);
+  }
+
+  /// the ring rows of the next level (called by `refine()` before it replaces this level). An
+  /// old vertex `v` keeps its row, each edge `e` (other end `w`) replaced by its half at `v`
+  /// (`2e` if `v < w`, else `2e + 1`: the same order) whose other end is the point `n + e`. The
+  /// point of a crease edge `e = (a, b)` sums the crease edges `2e` and `2e + 1` (other ends
+  /// `min(a, b)` and `max(a, b)`), that of a smooth edge also its four inner edges, two in each of
+  /// its triangles (the smaller triangle's first), whose other ends are the triangle's other edge
+  /// points. Vertex by vertex, edge by edge on TBB's threads with the tag; none is sorted.
+  template <class ConcurrencyTag>
+  void refine_ring_rows(std::size_t n)
+  {
+    const std::size_t E = number_of_edges;
+    Uninitialized_vector<std::size_t> first(n + E + 1); // every entry written below
+    // old vertices: the same rows at the same places; edge points: 2 or 6 edges each, placed by blocks
+    for_each_index<ConcurrencyTag>(n + 1, [&](std::size_t v) { first[v] = ring_first[v]; });
+    std::vector<std::size_t> in_block(number_of_blocks(E), 0);
+    for_each_block<ConcurrencyTag>(E, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t c = 0;
+      for(std::size_t e = begin; e != end; ++e) c += is_crease(static_cast<Index>(e)) ? 2 : 6;
+      in_block[b] = c;
+    });
+    const std::size_t total = ring_first[n] + exclusive_prefix_sums(in_block);
+    Uninitialized_vector<Ring_entry> rows(total); // every entry written below
+    for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
+      const Index v = static_cast<Index>(i);
+      for(std::size_t j = ring_first[v]; j != ring_first[v + 1]; ++j) {
+        const Ring_entry r = ring[j];
+        rows[j] = {2 * r.edge + (v < r.other ? 0 : 1), static_cast<Index>(n + r.edge)};
+      }
+    });
+    for_each_block<ConcurrencyTag>(E, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t at = ring_first[n] + in_block[b];
+      for(std::size_t i = begin; i != end; ++i) {
+        const Index e = static_cast<Index>(i), a = first_vertex(e), c = second_vertex(e);
+        first[n + i] = at;
+        rows[at++] = {2 * e, std::min(a, c)};
+        rows[at++] = {2 * e + 1, std::max(a, c)};
+        if(is_crease(e)) continue;
+        // The point of e, edge k of triangle t, is on the inner edges k (to the point of edge
+        // k + 2) and k + 1 (to that of edge k + 1), numbered 2E + 3t + k and 2E + 3t + (k + 1) % 3.
+        for(const Index half : {std::min(half1[e], half2[e]), std::max(half1[e], half2[e])}) {
+          const Index t = half / 3, k = half % 3, inner = static_cast<Index>(2 * E + 3 * t);
+          const Index to_k2 = static_cast<Index>(n + edge_of[3 * t + (k + 2) % 3]);
+          const Index to_k1 = static_cast<Index>(n + edge_of[3 * t + (k + 1) % 3]);
+          if(k < 2) {
+            rows[at++] = {inner + k, to_k2};
+            rows[at++] = {inner + k + 1, to_k1};
+          } else {
+            rows[at++] = {inner, to_k1};
+            rows[at++] = {inner + 2, to_k2};
+          }
+        }
+      }
+    });
+    first[n + E] = total;
+    ring_first.swap(first);
+    ring.swap(rows);
   }
 };
 
@@ -469,8 +578,9 @@ private:
 };
 
 /// One level of Loop's rules computed in parallel: the edge points each on their own, the ring
-/// sums per vertex over its edges in increasing edge order (the order of the sequential sums, so
-/// the floating-point results are the same bit for bit).
+/// sum of every vertex over the other ends of its ring row (`Loop_level::ring`), in increasing
+/// edge order: the order of the sequential sums, so the floating-point results are the same bit
+/// for bit.
 template <class ConcurrencyTag, class GT>
 void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
                              std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
@@ -480,49 +590,30 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
   const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
   out.resize(n + E);
-  // the edges of every vertex, in increasing order
-  std::vector<std::size_t> first_edge(n + 1, 0);
-  Uninitialized_vector<Index> edges_of(2 * E); // both ends of every edge, written below
-  {
-    const std::unique_ptr<std::atomic<Index>[]> cursor(new std::atomic<Index>[n]);
-    for_each_index<ConcurrencyTag>(n, [&](std::size_t v) { cursor[v].store(0, std::memory_order_relaxed); });
-    for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
-      Index a, b;
-      stencils.ends(static_cast<Index>(e), a, b);
-      cursor[a].fetch_add(1, std::memory_order_relaxed);
-      cursor[b].fetch_add(1, std::memory_order_relaxed);
-    });
-    for(std::size_t v = 0; v < n; ++v) {
-      first_edge[v + 1] = first_edge[v] + cursor[v].load(std::memory_order_relaxed);
-      cursor[v].store(0, std::memory_order_relaxed);
-    }
-    for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
-      Index a, b;
-      stencils.ends(static_cast<Index>(e), a, b);
-      edges_of[first_edge[a] + cursor[a].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
-      edges_of[first_edge[b] + cursor[b].fetch_add(1, std::memory_order_relaxed)] = static_cast<Index>(e);
-    });
-  }
   for_each_index<ConcurrencyTag>(E, [&](std::size_t e) { out[n + e] = stencils.edge_point(static_cast<Index>(e)); });
   for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
     const Index v = static_cast<Index>(i);
     const Loop_vertex_kind kind = level.kind[v];
     if(kind == Loop_vertex_kind::CORNER) { out[v] = in[v]; return; }
-    std::size_t first = first_edge[v], last = first_edge[v + 1];
-    std::sort(edges_of.begin() + static_cast<std::ptrdiff_t>(first), edges_of.begin() + static_cast<std::ptrdiff_t>(last));
+    const std::size_t first = level.ring_first[v], last = level.ring_first[v + 1];
     Vector sum(CGAL::NULL_VECTOR);
-    std::size_t valence = 0;
-    for(std::size_t j = first; j != last; ++j) {
-      const Index e = edges_of[j];
-      if(level.is_crease(e) != (kind == Loop_vertex_kind::CREASE)) continue;
-      Index a, b;
-      stencils.ends(e, a, b);
-      sum = stencils.add(sum, stencils.vec(a == v ? b : a));
-      ++valence;
-    }
+    for(std::size_t j = first; j != last; ++j) sum = stencils.add(sum, stencils.vec(level.ring[j].other));
+    const std::size_t valence = last - first;
     out[v] = kind == Loop_vertex_kind::SMOOTH ? stencils.smooth_vertex_point(v, sum, valence, loop_beta_value(choice, valence))
                                               : stencils.crease_vertex_point(v, sum);
   });
+}
+
+/// `true` if `loop_smooth()` runs in parallel: with the tag, on several threads, and for `double`
+/// coordinates (lazily exact numbers share state between the points they were computed from).
+/// The caller then builds the ring rows of the level (`Loop_level::build_ring_rows()`).
+template <class ConcurrencyTag, class GT>
+bool loop_smooths_in_parallel()
+{
+  if constexpr(runs_in_parallel<ConcurrencyTag>() && std::is_same<typename GT::FT, double>::value)
+    return runs_on_several_threads<ConcurrencyTag>();
+  else
+    return false;
 }
 
 /// One level of Loop's rules: `out` receives the `n` moved vertices then the `E` edge points.
@@ -530,12 +621,11 @@ template <class ConcurrencyTag = CGAL::Sequential_tag, class GT>
 void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3>& in,
                  std::vector<typename GT::Point_3>& out, Loop_beta choice, const GT& gt)
 {
-  // Parallel constructions only for double coordinates: lazily exact numbers share state
-  // between the points they were computed from. On one thread the sequential pass below, for
-  // the same points bit for bit: the parallel one lists the edges of every vertex and sorts them
-  // (with it, two levels of a 300,000-triangle mesh took 1.5 times the instructions).
+  // In parallel when the level has its ring rows (see `loop_smooths_in_parallel()`); otherwise
+  // the sequential pass below, which gives the same points bit for bit (and on one thread is the
+  // faster: it needs no rows).
   if constexpr(runs_in_parallel<ConcurrencyTag>() && std::is_same<typename GT::FT, double>::value) {
-    if(runs_on_several_threads<ConcurrencyTag>()) {
+    if(level.has_ring_rows(in.size())) {
       loop_smooth_in_parallel<ConcurrencyTag>(level, in, out, choice, gt);
       return;
     }
@@ -945,6 +1035,7 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
   if(iterations > 0) {
     internal::Loop_level level;
     level.initialize<ConcurrencyTag>(adj);
+    if(internal::loop_smooths_in_parallel<ConcurrencyTag, GT>()) level.build_ring_rows<ConcurrencyTag>(adj);
     std::vector<Point> next;
     for(unsigned int it = 0; it < iterations; ++it) {
       const std::uint64_t size = std::uint64_t(current.size()) + level.number_of_edges;
