@@ -13,6 +13,7 @@
 
 #include "parallel_test_utilities.h"
 
+#include <deque>
 #include <utility>
 
 namespace {
@@ -486,6 +487,42 @@ void leave_a_pattern_in_freed_memory()
   for(void* block : blocks) std::free(block);
 }
 
+// Whether this process can see the huge-page advice of its mappings: the package advises them
+// (Linux), the kernel has transparent huge pages, and no sanitizer's allocator lays the memory out
+// its own way (clang says so by __has_feature only).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define PARALLEL_TEST_SANITIZED_ALLOCATOR 1
+#endif
+#endif
+bool huge_page_advice_is_visible()
+{
+#if defined(SOUP_TOPOLOGY_HUGE_PAGES) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && \
+  !defined(PARALLEL_TEST_SANITIZED_ALLOCATOR)
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  return thp && std::getline(thp, modes) && modes.find("[never]") == std::string::npos;
+#else
+  return false;
+#endif
+}
+
+// Whether the huge page of this process that starts at or after `block` lies in a mapping
+// flagged "hg" in /proc/self/smaps.
+testing::AssertionResult first_huge_page_is_advised(const void* block)
+{
+  const std::size_t huge_page = std::size_t(2) << 20;
+  const std::uintptr_t address = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) & ~(huge_page - 1);
+  const std::vector<soup_test::Memory_mapping> mappings = soup_test::memory_mappings();
+  if(mappings.empty()) return testing::AssertionFailure() << "no /proc/self/smaps";
+  const auto holding = std::find_if(mappings.begin(), mappings.end(), [&](const soup_test::Memory_mapping& m) {
+    return m.begin <= address && address < m.end;
+  });
+  if(holding == mappings.end()) return testing::AssertionFailure() << "no mapping holds the block";
+  if(!holding->advised_for_huge_pages) return testing::AssertionFailure() << "the block's mapping is not advised";
+  return testing::AssertionSuccess();
+}
+
 // Blocks of an `Uninitialized_vector` from 4 MiB on are asked for in transparent huge pages on
 // Linux (aligned to 2 MiB, advised MADV_HUGEPAGE), smaller ones come from `std::allocator`: the
 // contents survive growth and shrinking across that size, each block freed as it was allocated
@@ -518,28 +555,82 @@ TEST(ParallelUninitializedTables, LargeTablesInHugePages)
   const auto address = reinterpret_cast<std::uintptr_t>(table.data());
   EXPECT_EQ(address % (std::size_t(2) << 20), 0u);
   for(std::size_t i = 0; i < large; ++i) table[i] = i;
-  // The mapping that holds the table is flagged "hg" in /proc/self/smaps (not under a sanitizer,
-  // whose allocator lays its memory out its own way; clang says so by __has_feature only).
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define PARALLEL_TEST_SANITIZED_ALLOCATOR 1
-#endif
-#endif
-#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && !defined(PARALLEL_TEST_SANITIZED_ALLOCATOR)
-  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string modes;
-  if(thp && std::getline(thp, modes) && modes.find("[never]") == std::string::npos) {
-    const std::vector<soup_test::Memory_mapping> mappings = soup_test::memory_mappings();
-    ASSERT_FALSE(mappings.empty()) << "no /proc/self/smaps";
-    const auto holding = std::find_if(mappings.begin(), mappings.end(), [&](const soup_test::Memory_mapping& m) {
-      return m.begin <= address && address < m.end;
-    });
-    ASSERT_NE(holding, mappings.end()) << "no mapping holds the table";
-    EXPECT_TRUE(holding->advised_for_huge_pages) << "the mapping of a 24 MiB table is not advised for huge pages";
+  // (the table starts a huge page)
+  if(huge_page_advice_is_visible()) {
+    EXPECT_TRUE(first_huge_page_is_advised(table.data())) << "a 24 MiB table";
   }
-#endif
   EXPECT_EQ(table[large - 1], large - 1);
 #endif
+}
+
+// The caller's vectors that the package grows (the exact weld's points and triangles, the
+// triangles that a T-junction split appends, Loop's points and triangles) get their room in a new
+// block whose huge pages are advised before anything touches them
+// (`internal::reserve_in_huge_pages()`): the elements and the size survive the move, a vector with
+// room enough keeps its block, a range of another type is given `reserve()` where it has one.
+TEST(ParallelUninitializedTables, CallersVectorsGrowIntoHugePages)
+{
+  const std::size_t small = (std::size_t(1) << 20) / sizeof(std::uint64_t); // 1 MiB
+  const std::size_t large = 24 * small;                                      // 24 MiB
+  std::vector<std::uint64_t> v(small);
+  for(std::size_t i = 0; i < small; ++i) v[i] = 7 * i;
+  ST::internal::reserve_in_huge_pages(v, large, 2 * large);
+  EXPECT_EQ(v.size(), small);
+  EXPECT_GE(v.capacity(), 2 * large);
+  std::size_t wrong = 0;
+  for(std::size_t i = 0; i < small; ++i) wrong += v[i] != 7 * i;
+  EXPECT_EQ(wrong, 0u);
+  const std::uint64_t* const block = v.data();
+  ST::internal::reserve_in_huge_pages(v, large);
+  EXPECT_EQ(v.data(), block) << "a vector with room enough is moved";
+  v.resize(large, 1);
+  if(huge_page_advice_is_visible()) {
+    EXPECT_TRUE(first_huge_page_is_advised(v.data())) << "a caller's 48 MiB vector";
+  }
+
+  std::deque<int> no_reserve{1, 2, 3};
+  ST::internal::reserve_in_huge_pages(no_reserve, 100);
+  EXPECT_EQ(no_reserve, (std::deque<int>{1, 2, 3}));
+  ST::internal::Uninitialized_vector<std::uint32_t> other_allocator(3, 5u);
+  ST::internal::reserve_in_huge_pages(other_allocator, 1000);
+  EXPECT_GE(other_allocator.capacity(), 1000u);
+  EXPECT_EQ(std::vector<std::uint32_t>(other_allocator.begin(), other_allocator.end()), (std::vector<std::uint32_t>{5, 5, 5}));
+
+  // The package's growth of the caller's vectors: Loop (two levels of the bunny: 1.1M triangles,
+  // 0.55M points, more than 4 MiB each), the exact weld of that mesh exploded, and the T-junction
+  // split of two patches of the bunny split once (0.3M triangles, copied: no room for the new ones).
+  const Mesh_data m = load("clean/bunny00.off.xz");
+  std::vector<Point> loop_points = m.points;
+  std::vector<Triangle> loop_triangles = m.triangles;
+  ST::loop_subdivision<Parallel>(loop_points, loop_triangles, CGAL::parameters::number_of_iterations(2));
+  ASSERT_GT(loop_points.size() * sizeof(Point), ST::internal::huge_page_block_bytes);
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  ST::index_triangles<Parallel>(soup_test::explode(loop_points, loop_triangles), points, triangles);
+  EXPECT_EQ(points.size(), loop_points.size());
+  EXPECT_EQ(triangles.size(), loop_triangles.size());
+  std::vector<Point> split_once_points = m.points;
+  std::vector<Triangle> split_once_triangles = m.triangles;
+  soup_test::subdivide_midpoints(split_once_points, split_once_triangles);
+  const auto soup = soup_test::t_junction_soup(split_once_points, split_once_triangles, 2, 0.0, 17);
+  ASSERT_GT(soup.triangles.size() * sizeof(Triangle), ST::internal::huge_page_block_bytes);
+  const auto np = CGAL::parameters::snapping_tolerance(1e-9);
+  std::vector<Triangle> split = soup.triangles, split_with_room;
+  ASSERT_EQ(split.capacity(), split.size());
+  const ST::Split_report report = ST::split_t_junctions<Parallel>(soup.points, split, np);
+  EXPECT_GT(report.split_triangles, 0u);
+  EXPECT_EQ(split.size(), soup.triangles.size() + report.split_triangles);
+  split_with_room.reserve(2 * soup.triangles.size());
+  split_with_room.assign(soup.triangles.begin(), soup.triangles.end());
+  ST::split_t_junctions<Parallel>(soup.points, split_with_room, np);
+  EXPECT_EQ(split, split_with_room);
+  if(huge_page_advice_is_visible()) {
+    EXPECT_TRUE(first_huge_page_is_advised(loop_points.data())) << "Loop's points";
+    EXPECT_TRUE(first_huge_page_is_advised(loop_triangles.data())) << "Loop's triangles";
+    EXPECT_TRUE(first_huge_page_is_advised(points.data())) << "the exact weld's points";
+    EXPECT_TRUE(first_huge_page_is_advised(triangles.data())) << "the exact weld's triangles";
+    EXPECT_TRUE(first_huge_page_is_advised(split.data())) << "the triangles a split appended to";
+  }
 }
 
 TEST(ParallelUninitializedTables, NoEntryIsLeftUnwritten)

@@ -94,6 +94,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   const std::size_t distinct = exclusive_prefix_sums(point_place);
   Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners first, then the others
   points.clear();
+  reserve_in_huge_pages(points, distinct);
   points.resize(distinct);
   for_each_block<ConcurrencyTag>(corners, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t position = point_place[b];
@@ -120,6 +121,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   });
   const std::size_t kept_count = exclusive_prefix_sums(face_place);
   faces.clear();
+  reserve_in_huge_pages(faces, kept_count);
   faces.resize(kept_count);
   for_each_block<ConcurrencyTag>(m, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t position = face_place[b];
@@ -156,7 +158,7 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
   std::size_t distinct = 0;
   for(const std::size_t firsts : weld.firsts_by_block) distinct += firsts;
   points.clear();
-  points.reserve(distinct);
+  reserve_in_huge_pages(points, distinct);
   for(std::size_t i = 0; i < corners; ++i) {
     if(point_of[i] == i) {
       point_of[i] = static_cast<std::uint32_t>(points.size());
@@ -166,7 +168,7 @@ void index_corners(std::size_t corners, const CornerAccess& corner_point, PointR
     }
   }
   faces.clear();
-  faces.reserve(corners / 3);
+  reserve_in_huge_pages(faces, corners / 3);
   for(std::size_t k = 0; k < corners / 3; ++k) {
     const std::size_t a = point_of[3 * k], b = point_of[3 * k + 1], c = point_of[3 * k + 2];
     if(a == b || b == c || c == a) { ++report.collapsed_triangles; continue; }

@@ -367,6 +367,7 @@ struct Loop_level
   {
     using Face = typename FaceRange::value_type;
     const std::size_t m = triangles.size();
+    reserve_in_huge_pages(faces, 4 * m);
     faces.resize(4 * m);
     for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
       const std::array<Index, 3>& v = triangles[t];
@@ -589,6 +590,7 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
   using Index = Loop_level::Index;
   const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
+  reserve_in_huge_pages(out, n + E);
   out.resize(n + E);
   for_each_index<ConcurrencyTag>(E, [&](std::size_t e) { out[n + e] = stencils.edge_point(static_cast<Index>(e)); });
   for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
@@ -634,6 +636,7 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
   using Index = Loop_level::Index;
   const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
+  reserve_in_huge_pages(out, n + E);
   out.resize(n + E);
   // the sum of the ring of every vertex and its valence, side by side (one cache line per update)
   struct Ring { Vector sum; Index valence; };
@@ -1030,7 +1033,7 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
   internal::check_finite_points(points, point_map);
   const Adjacency_tables adj(triangles, n, ConcurrencyTag());   // validates the triangles
   std::vector<Point> current;
-  current.reserve(n);
+  internal::reserve_in_huge_pages(current, n);
   for(const auto& p : points) current.push_back(get(point_map, p));
   if(iterations > 0) {
     internal::Loop_level level;

@@ -302,7 +302,7 @@ public:
     report_.input_points = static_cast<std::size_t>(std::distance(points.begin(), points.end()));
     report_.input_triangles = triangles_.size();
     pts_.clear();
-    pts_.reserve(report_.input_points);
+    reserve_in_huge_pages(pts_, report_.input_points);
     for(const auto& e : points) pts_.push_back(convert_point<Point, FT>(get(pm, e)));
     input_index_.clear();
   }

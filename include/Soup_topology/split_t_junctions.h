@@ -13,6 +13,7 @@
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/coordinate_scale.h>
 #include <Soup_topology/internal/tolerance.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -207,7 +208,11 @@ Split_report split_t_junctions(const PointRange& points, TriangleRange& triangle
     point_vector, tables, kernel, eps, Visitor_type::get(visitor), tolerances);
   Split_report report = splitter.template run<ConcurrencyTag>();
   report.tolerance = std::ldexp(report.tolerance, -exponent);
-  // Write the triangles back: the split ones and the new ones.
+  // Write the triangles back: the split ones and the new ones. The room for the new ones is
+  // made first, as `push_back()` would make it (twice the size: later rounds may add more), in
+  // huge pages for a `std::vector`.
+  if(tables.number_of_triangles() > triangles.size())
+    internal::reserve_in_huge_pages(triangles, tables.number_of_triangles(), 2 * triangles.size());
   for(Adjacency_tables::size_type t : splitter.changed_triangles()) {
     const Adjacency_tables::Triangle& tr = tables.triangle(t);
     while(triangles.size() <= t) triangles.push_back(internal::make_triangle<Face>(0, 0, 0));
