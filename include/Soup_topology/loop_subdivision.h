@@ -638,9 +638,10 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
   const std::size_t n = in.size(), E = level.number_of_edges;
   reserve_in_huge_pages(out, n + E);
   out.resize(n + E);
-  // the sum of the ring of every vertex and its valence, side by side (one cache line per update)
+  // the sum of the ring of every vertex and its valence, side by side (one cache line per update;
+  // updated in the order of the edges, at random across the vertices: in huge pages from 4 MiB on)
   struct Ring { Vector sum; Index valence; };
-  std::vector<Ring> ring(n, Ring{Vector(CGAL::NULL_VECTOR), 0});
+  Uninitialized_vector<Ring> ring(n, Ring{Vector(CGAL::NULL_VECTOR), 0});
   for(Index e = 0; e < E; ++e) {
     out[n + e] = stencils.edge_point(e);
     Index a, b;
