@@ -14,6 +14,7 @@
 #include "parallel_test_utilities.h"
 
 #include <deque>
+#include <stdexcept>
 #include <utility>
 
 namespace {
@@ -588,13 +589,48 @@ TEST(ParallelUninitializedTables, CallersVectorsGrowIntoHugePages)
     EXPECT_TRUE(first_huge_page_is_advised(v.data())) << "a caller's 48 MiB vector";
   }
 
+  // A move that may throw is not used: the elements are copied, and a copy that throws leaves the
+  // vector as it was.
+  struct Copy_may_throw
+  {
+    int value;
+    explicit Copy_may_throw(int v) : value(v) {}
+    Copy_may_throw(const Copy_may_throw& other) : value(other.value)
+    {
+      if(--copies_left() < 0) throw std::runtime_error("copy");
+    }
+    Copy_may_throw(Copy_may_throw&& other) : value(other.value) { other.value = -1; }
+    Copy_may_throw& operator=(const Copy_may_throw&) = default;
+    static int& copies_left()
+    {
+      static int left = 0;
+      return left;
+    }
+  };
+  std::vector<Copy_may_throw> fragile;
+  fragile.reserve(1000);
+  for(int i = 0; i < 1000; ++i) fragile.emplace_back(i);
+  Copy_may_throw::copies_left() = 500;
+  EXPECT_THROW(ST::internal::reserve_in_huge_pages(fragile, 5000), std::runtime_error);
+  EXPECT_EQ(fragile.size(), 1000u);
+  EXPECT_EQ(fragile.capacity(), 1000u);
+  wrong = 0;
+  for(int i = 0; i < 1000; ++i) wrong += fragile[std::size_t(i)].value != i;
+  EXPECT_EQ(wrong, 0u);
+  Copy_may_throw::copies_left() = 1000;
+  ST::internal::reserve_in_huge_pages(fragile, 5000);
+  EXPECT_GE(fragile.capacity(), 5000u);
+  for(int i = 0; i < 1000; ++i) wrong += fragile[std::size_t(i)].value != i;
+  EXPECT_EQ(wrong, 0u);
+
   std::deque<int> no_reserve{1, 2, 3};
   ST::internal::reserve_in_huge_pages(no_reserve, 100);
   EXPECT_EQ(no_reserve, (std::deque<int>{1, 2, 3}));
   ST::internal::Uninitialized_vector<std::uint32_t> other_allocator(3, 5u);
   ST::internal::reserve_in_huge_pages(other_allocator, 1000);
   EXPECT_GE(other_allocator.capacity(), 1000u);
-  EXPECT_EQ(std::vector<std::uint32_t>(other_allocator.begin(), other_allocator.end()), (std::vector<std::uint32_t>{5, 5, 5}));
+  EXPECT_EQ(std::vector<std::uint32_t>(other_allocator.begin(), other_allocator.end()),
+            (std::vector<std::uint32_t>{5, 5, 5}));
 
   // The package's growth of the caller's vectors: Loop (two levels of the bunny: 1.1M triangles,
   // 0.55M points, more than 4 MiB each), the exact weld of that mesh exploded, and the T-junction

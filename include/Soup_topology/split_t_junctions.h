@@ -119,7 +119,8 @@ class T_junction_splitter;
 /// edge (n^2 work). The fan check along an edge is linear in the number of vertices on it.
 ///
 /// New triangles are appended to `triangles` (which must support `push_back`), in the order of
-/// the border edges, then along each edge.
+/// the border edges, then along each edge. A `std::vector` without room for them is given room
+/// for twice its size first, in a block whose huge pages are advised before it is written.
 ///
 /// With `CGAL::Parallel_tag` the search for the vertices near each border edge runs on TBB's
 /// threads, its results put together in the order of the border edges: the result is the same

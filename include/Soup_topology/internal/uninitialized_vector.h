@@ -14,13 +14,18 @@
 // fault costs about 10 microseconds: `index_triangles()` of a 4.8M-triangle exploded soup 1.07 s
 // -> 0.44 s on 1 thread and 0.95 s -> 0.25 s on 2 (the faults did not run in parallel). The cost
 // is at most one partly used huge page a block (these tables are written whole). Define
-// `SOUP_TOPOLOGY_NO_HUGE_PAGES` to allocate them as `std::allocator` does.
+// `SOUP_TOPOLOGY_NO_HUGE_PAGES` to allocate them as `std::allocator` does (and to leave the
+// caller's vectors below unadvised).
+//
+// The caller's vectors that a function grows keep `std::allocator`: `reserve_in_huge_pages()`
+// gives one its room in a new block whose huge pages are advised before anything touches them.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_UNINITIALIZED_VECTOR_H
 #define SOUP_TOPOLOGY_INTERNAL_UNINITIALIZED_VECTOR_H
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <iterator>
 #include <memory>
@@ -145,8 +150,8 @@ inline void advise_huge_pages(void* block, std::size_t bytes)
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES)
   constexpr std::size_t huge_page = std::size_t(2) << 20;
   if(!is_huge_page_block(bytes)) return;
-  const std::size_t first = (reinterpret_cast<std::size_t>(block) + huge_page - 1) & ~(huge_page - 1);
-  const std::size_t last = (reinterpret_cast<std::size_t>(block) + bytes) & ~(huge_page - 1);
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) & ~(huge_page - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(huge_page - 1);
   if(first < last) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #else
   (void)block;
@@ -160,7 +165,9 @@ inline void advise_huge_pages(void* block, std::size_t bytes)
 /// growth of a 116 MB vector by `push_back()` (which doubles the capacity and copies the elements on
 /// one thread) faulted it in one 4 KiB page at a time, 0.29 s on a machine where a fault costs
 /// about 10 microseconds, against 0.01 s in huge pages. The new capacity is `room` (at least `n`:
-/// a caller that goes on appending asks for more). The elements and the size are unchanged.
+/// a caller that goes on appending asks for more). The elements and the size are unchanged; if an
+/// exception is thrown, `v` is left as it was (elements whose move may throw are copied, as
+/// `std::vector` does when it grows).
 template <class T>
 void reserve_in_huge_pages(std::vector<T>& v, std::size_t n, std::size_t room = 0)
 {
@@ -169,7 +176,10 @@ void reserve_in_huge_pages(std::vector<T>& v, std::size_t n, std::size_t room = 
   std::vector<T> grown;
   grown.reserve(room);
   advise_huge_pages(grown.data(), room * sizeof(T));
-  grown.insert(grown.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+  if constexpr(std::is_nothrow_move_constructible<T>::value || !std::is_copy_constructible<T>::value)
+    grown.insert(grown.end(), std::make_move_iterator(v.begin()), std::make_move_iterator(v.end()));
+  else
+    grown.insert(grown.end(), v.begin(), v.end());
   v.swap(grown);
 }
 
