@@ -512,7 +512,7 @@ bool huge_page_advice_is_visible()
 // flagged "hg" in /proc/self/smaps.
 testing::AssertionResult first_huge_page_is_advised(const void* block)
 {
-  const std::size_t huge_page = std::size_t(2) << 20;
+  const std::size_t huge_page = ST::internal::huge_page_bytes;
   const std::uintptr_t address = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) & ~(huge_page - 1);
   const std::vector<soup_test::Memory_mapping> mappings = soup_test::memory_mappings();
   if(mappings.empty()) return testing::AssertionFailure() << "no /proc/self/smaps";

@@ -94,8 +94,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   const std::size_t distinct = exclusive_prefix_sums(point_place);
   Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners first, then the others
   points.clear();
-  reserve_in_huge_pages(points, distinct);
-  points.resize(distinct);
+  resize_in_huge_pages(points, distinct);
   for_each_block<ConcurrencyTag>(corners, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t position = point_place[b];
     for(std::size_t i = begin; i != end; ++i) {
@@ -121,8 +120,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   });
   const std::size_t kept_count = exclusive_prefix_sums(face_place);
   faces.clear();
-  reserve_in_huge_pages(faces, kept_count);
-  faces.resize(kept_count);
+  resize_in_huge_pages(faces, kept_count);
   for_each_block<ConcurrencyTag>(m, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
     std::size_t position = face_place[b];
     for(std::size_t k = begin; k != end; ++k) {

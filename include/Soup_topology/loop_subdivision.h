@@ -367,8 +367,7 @@ struct Loop_level
   {
     using Face = typename FaceRange::value_type;
     const std::size_t m = triangles.size();
-    reserve_in_huge_pages(faces, 4 * m);
-    faces.resize(4 * m);
+    resize_in_huge_pages(faces, 4 * m);
     for_each_index<ConcurrencyTag>(m, [&](std::size_t t) {
       const std::array<Index, 3>& v = triangles[t];
       const std::size_t e[3] = {n + edge_of[3 * t], n + edge_of[3 * t + 1], n + edge_of[3 * t + 2]};
@@ -590,8 +589,7 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
   using Index = Loop_level::Index;
   const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
-  reserve_in_huge_pages(out, n + E);
-  out.resize(n + E);
+  resize_in_huge_pages(out, n + E);
   for_each_index<ConcurrencyTag>(E, [&](std::size_t e) { out[n + e] = stencils.edge_point(static_cast<Index>(e)); });
   for_each_index<ConcurrencyTag>(n, [&](std::size_t i) {
     const Index v = static_cast<Index>(i);
@@ -636,8 +634,7 @@ void loop_smooth(const Loop_level& level, const std::vector<typename GT::Point_3
   using Index = Loop_level::Index;
   const Loop_stencils<GT> stencils(level, in, gt);
   const std::size_t n = in.size(), E = level.number_of_edges;
-  reserve_in_huge_pages(out, n + E);
-  out.resize(n + E);
+  resize_in_huge_pages(out, n + E);
   // the sum of the ring of every vertex and its valence, side by side (one cache line per update;
   // updated in the order of the edges, at random across the vertices: in huge pages from 4 MiB on)
   struct Ring { Vector sum; Index valence; };

@@ -19,6 +19,7 @@
 
 #include <Soup_topology/IO/Read_error.h>
 #include <Soup_topology/index_triangles.h>
+#include <Soup_topology/internal/uninitialized_vector.h>
 
 /// \file VRML.h
 /// A reader for the polygon geometry of VRML 2.0 (VRML97) files, as written by CAD exporters:
@@ -139,11 +140,7 @@ namespace IO {
 /// \cond SKIP_IN_MANUAL
 namespace internal {
 
-template <typename Range, typename = void>
-struct Has_reserve : std::false_type {};
-template <typename Range>
-struct Has_reserve<Range, std::void_t<decltype(std::declval<Range&>().reserve(std::size_t(1)))>>
-  : std::true_type {};
+using Soup_topology::internal::Has_reserve;
 
 template <typename PointRange, typename TriangleRange>
 void append_VRML_soup(const Soup_topology::internal::VRML::Soup& soup,

@@ -59,16 +59,34 @@ constexpr bool is_huge_page_block(std::size_t bytes)
 #endif
 }
 
+/// the size of a transparent huge page.
+constexpr std::size_t huge_page_bytes = std::size_t(2) << 20;
+
+/// advises the whole huge pages inside the `bytes` bytes at `block` for transparent huge pages,
+/// if they are at least `huge_page_block_bytes`; for a block not yet touched (advice given after
+/// a page is faulted in does not change that page).
+inline void advise_huge_pages(void* block, std::size_t bytes)
+{
+#if defined(SOUP_TOPOLOGY_HUGE_PAGES)
+  if(!is_huge_page_block(bytes)) return;
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + huge_page_bytes - 1) & ~(huge_page_bytes - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(huge_page_bytes - 1);
+  if(first < last) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#else
+  (void)block;
+  (void)bytes;
+#endif
+}
+
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES)
 /// a block of `bytes` bytes aligned to 2 MiB, its whole huge pages marked for transparent huge
 /// pages (the advice may be refused: the block is then made of small pages); throws
 /// `std::bad_alloc` if there is no memory. Freed by `std::free()`.
 inline void* allocate_in_huge_pages(std::size_t bytes)
 {
-  constexpr std::size_t huge_page = std::size_t(2) << 20;
   void* block = nullptr;
-  if(posix_memalign(&block, huge_page, bytes) != 0 || block == nullptr) throw std::bad_alloc();
-  madvise(block, bytes & ~(huge_page - 1), MADV_HUGEPAGE);
+  if(posix_memalign(&block, huge_page_bytes, bytes) != 0 || block == nullptr) throw std::bad_alloc();
+  advise_huge_pages(block, bytes);
   return block;
 }
 #endif
@@ -142,23 +160,6 @@ bool operator!=(const Default_init_allocator<T>&, const Default_init_allocator<U
 template <class T>
 using Uninitialized_vector = std::vector<T, Default_init_allocator<T>>;
 
-/// advises the whole huge pages inside the `bytes` bytes at `block` for transparent huge pages,
-/// if they are at least `huge_page_block_bytes`; for a block not yet touched (advice given after
-/// a page is faulted in does not change that page).
-inline void advise_huge_pages(void* block, std::size_t bytes)
-{
-#if defined(SOUP_TOPOLOGY_HUGE_PAGES)
-  constexpr std::size_t huge_page = std::size_t(2) << 20;
-  if(!is_huge_page_block(bytes)) return;
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) & ~(huge_page - 1);
-  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(huge_page - 1);
-  if(first < last) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#else
-  (void)block;
-  (void)bytes;
-#endif
-}
-
 /// gives a caller's `std::vector` room for `n` elements: if its capacity is smaller, its elements
 /// move into a new block whose huge pages are advised before the move touches them. The caller's
 /// vectors keep `std::allocator`, from which glibc serves a large block by a fresh mapping: the
@@ -183,20 +184,25 @@ void reserve_in_huge_pages(std::vector<T>& v, std::size_t n, std::size_t room = 
   v.swap(grown);
 }
 
+/// whether `Range` has `reserve(std::size_t)`.
+template <class Range, class = void>
+struct Has_reserve : std::false_type {};
 template <class Range>
-auto reserve_if_possible(Range& r, std::size_t n, int) -> decltype(r.reserve(n), void())
-{
-  r.reserve(n);
-}
-template <class Range>
-void reserve_if_possible(Range&, std::size_t, long)
-{}
+struct Has_reserve<Range, std::void_t<decltype(std::declval<Range&>().reserve(std::size_t(1)))>> : std::true_type {};
 
 /// for a range of another type: `reserve(n)` where the range has it, nothing otherwise.
 template <class Range>
 void reserve_in_huge_pages(Range& r, std::size_t n, std::size_t /*room*/ = 0)
 {
-  reserve_if_possible(r, n, 0);
+  if constexpr(Has_reserve<Range>::value) r.reserve(n);
+}
+
+/// `r.resize(n)`, the room made first by `reserve_in_huge_pages()`.
+template <class Range>
+void resize_in_huge_pages(Range& r, std::size_t n)
+{
+  reserve_in_huge_pages(r, n);
+  r.resize(n);
 }
 
 } // namespace internal
