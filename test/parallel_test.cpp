@@ -17,6 +17,10 @@
 #include <stdexcept>
 #include <utility>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace {
 
 // --- index_triangles and the exact weld ----------------------------------------------------------
@@ -561,6 +565,59 @@ TEST(ParallelUninitializedTables, LargeTablesInHugePages)
     EXPECT_TRUE(first_huge_page_is_advised(table.data())) << "a 24 MiB table";
   }
   EXPECT_EQ(table[large - 1], large - 1);
+#endif
+}
+
+// The number of the 4 KiB pages inside the `bytes` bytes at `block` that are resident.
+std::size_t resident_pages(const void* block, std::size_t bytes)
+{
+  std::size_t resident = 0;
+#if defined(__linux__)
+  constexpr std::uintptr_t page = 4096;
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + page - 1) & ~(page - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(page - 1);
+  std::vector<unsigned char> in_core((last - first) / page);
+  if(first < last && mincore(reinterpret_cast<void*>(first), last - first, in_core.data()) == 0)
+    for(const unsigned char c : in_core) resident += c & 1u;
+#else
+  (void)block;
+  (void)bytes;
+#endif
+  return resident;
+}
+
+// A large table that passes on TBB's threads write whole is faulted in first, by one call on one
+// thread (`internal::fault_in_pages()`): the elements stay as they were, and where the kernel
+// populates (MADV_POPULATE_WRITE, Linux 5.14) every page of a fresh block is resident afterwards
+// while a fresh block that nothing touched has none. The blocks are of 64 MiB, beyond the sizes
+// that glibc serves again from freed memory: each is a fresh mapping.
+TEST(ParallelUninitializedTables, LargeTablesAreFaultedInBeforeTheirPasses)
+{
+  const std::size_t large = (std::size_t(64) << 20) / sizeof(std::uint64_t);
+  ST::internal::Uninitialized_vector<std::uint64_t> kept(large);
+  for(std::size_t i = 0; i < large; ++i) kept[i] = 7 * i;
+  ST::internal::fault_in_pages(kept);
+  std::size_t wrong = 0;
+  for(std::size_t i = 0; i < large; ++i) wrong += kept[i] != 7 * i;
+  EXPECT_EQ(wrong, 0u) << "the elements of a table already written";
+  std::vector<std::uint64_t> callers(1000, 5);
+  ST::internal::fault_in_pages(callers); // (a small block: nothing to do)
+  EXPECT_EQ(callers, std::vector<std::uint64_t>(1000, 5));
+#if defined(SOUP_TOPOLOGY_HUGE_PAGES) && defined(MADV_POPULATE_WRITE)
+  if(huge_page_advice_is_visible()) {
+    // whether this kernel populates at all (an older one refuses the advice)
+    void* probe = mmap(nullptr, 4096, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ASSERT_NE(probe, MAP_FAILED);
+    const bool populates = madvise(probe, 4096, MADV_POPULATE_WRITE) == 0;
+    munmap(probe, 4096);
+    const std::size_t bytes = large * sizeof(std::uint64_t), pages = bytes / 4096;
+    ST::internal::Uninitialized_vector<std::uint64_t> untouched(large), fresh(large);
+    EXPECT_EQ(resident_pages(untouched.data(), bytes), 0u) << "a fresh block that nothing touched";
+    ST::internal::fault_in_pages(fresh);
+    if(populates) {
+      EXPECT_EQ(resident_pages(fresh.data(), bytes), pages) << "a fresh block faulted in";
+    }
+  }
 #endif
 }
 

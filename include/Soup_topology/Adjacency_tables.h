@@ -193,6 +193,7 @@ public:
       bool checked = false;
       if(internal::fits_in_32_bit_indices(number_of_points, m)) {
         triangles_.resize(m); // unwritten: every triangle is written below, on the thread of its block
+        internal::fault_in_pages(triangles_);
         std::vector<unsigned char> bad_in_block(internal::number_of_blocks(m), 0);
         internal::for_each_block<ConcurrencyTag>(m, internal::default_block_size,
                                                  [&](std::size_t b, std::size_t begin, std::size_t end) {
@@ -932,6 +933,10 @@ private:
     vertex_size_.resize(nv);
     ids_.resize(3 * m);
     neighbors_.resize(3 * m);
+    internal::fault_in_pages(vertex_begin_);
+    internal::fault_in_pages(vertex_size_);
+    internal::fault_in_pages(ids_);
+    internal::fault_in_pages(neighbors_);
     if(nv == 0) return;
     std::size_t shift = 10;
     while((nv >> shift) >= most_vertex_buckets) ++shift;

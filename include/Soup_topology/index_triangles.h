@@ -93,6 +93,7 @@ void index_corners_in_parallel(std::size_t corners, const CornerAccess& corner_p
   std::vector<std::size_t>& point_place = weld.firsts_by_block;
   const std::size_t distinct = exclusive_prefix_sums(point_place);
   Uninitialized_vector<std::uint32_t> point_of(corners); // the first corners first, then the others
+  fault_in_pages(point_of);
   points.clear();
   resize_in_huge_pages(points, distinct);
   for_each_block<ConcurrencyTag>(corners, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {

@@ -127,6 +127,8 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     Uninitialized_vector<std::uint8_t> partition_of(n);
     // the blocks that met a NaN or an infinite coordinate (with `extras` only)
     std::vector<unsigned char> non_finite_in_block(blocks, 0);
+    fault_in_pages(first_of);
+    fault_in_pages(partition_of);
     for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
       std::uint32_t* count = representatives.data() + b * partitions;
       Fingerprint_table table(2 * (end - begin));
@@ -179,6 +181,7 @@ Uninitialized_vector<std::uint32_t> first_equal_points_by_blocks(std::size_t n, 
     std::vector<std::uint32_t> firsts_in(count_in_partitions ? partitions * blocks : 0, 0);
     struct Key { double x, y, z; std::uint32_t index, fingerprint; };
     Uninitialized_vector<Key> keys(std::min(key_budget, partition_begin[partitions]));
+    fault_in_pages(keys);
     for(std::size_t first = 0; first < partitions;) {
       // the round: partitions [first, last), whose copies fit in the budget (one at least)
       std::size_t last = first + 1;
