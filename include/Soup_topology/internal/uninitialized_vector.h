@@ -65,16 +65,24 @@ constexpr bool is_huge_page_block(std::size_t bytes)
 /// the size of a transparent huge page.
 constexpr std::size_t huge_page_bytes = std::size_t(2) << 20;
 
+#if defined(SOUP_TOPOLOGY_HUGE_PAGES)
+/// gives `advice` (`madvise()`) to the whole pages of `page` bytes (a power of two) inside the
+/// `bytes` bytes at `block`, if there is one.
+inline void advise_whole_pages(void* block, std::size_t bytes, std::uintptr_t page, int advice)
+{
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + page - 1) & ~(page - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(page - 1);
+  if(first < last) madvise(reinterpret_cast<void*>(first), last - first, advice);
+}
+#endif
+
 /// advises the whole huge pages inside the `bytes` bytes at `block` for transparent huge pages,
 /// if they are at least `huge_page_block_bytes`; for a block not yet touched (advice given after
 /// a page is faulted in does not change that page).
 inline void advise_huge_pages(void* block, std::size_t bytes)
 {
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES)
-  if(!is_huge_page_block(bytes)) return;
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + huge_page_bytes - 1) & ~(huge_page_bytes - 1);
-  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(huge_page_bytes - 1);
-  if(first < last) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  if(is_huge_page_block(bytes)) advise_whole_pages(block, bytes, huge_page_bytes, MADV_HUGEPAGE);
 #else
   (void)block;
   (void)bytes;
@@ -178,11 +186,7 @@ void fault_in_pages(std::vector<T, Allocator>& v)
 {
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES) && defined(MADV_POPULATE_WRITE)
   const std::size_t bytes = v.size() * sizeof(T);
-  if(bytes < huge_page_block_bytes) return;
-  constexpr std::uintptr_t page = 4096;
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(v.data()) + page - 1) & ~(page - 1);
-  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(v.data()) + bytes) & ~(page - 1);
-  if(first < last) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  if(bytes >= huge_page_block_bytes) advise_whole_pages(v.data(), bytes, 4096, MADV_POPULATE_WRITE);
 #else
   (void)v;
 #endif
