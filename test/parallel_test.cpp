@@ -576,8 +576,9 @@ std::size_t resident_pages(const void* block, std::size_t bytes)
   constexpr std::uintptr_t page = 4096;
   const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + page - 1) & ~(page - 1);
   const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(page - 1);
+  if(first >= last) return 0;
   std::vector<unsigned char> in_core((last - first) / page);
-  if(first < last && mincore(reinterpret_cast<void*>(first), last - first, in_core.data()) == 0)
+  if(mincore(reinterpret_cast<void*>(first), last - first, in_core.data()) == 0)
     for(const unsigned char c : in_core) resident += c & 1u;
 #else
   (void)block;

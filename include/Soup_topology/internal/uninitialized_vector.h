@@ -174,13 +174,13 @@ using Uninitialized_vector = std::vector<T, Default_init_allocator<T>>;
 /// faults in the pages of the elements of `v` in one system call on the calling thread
 /// (`madvise(MADV_POPULATE_WRITE)`, Linux 5.14 and later), for a fresh block of at least
 /// `huge_page_block_bytes` that passes on TBB's threads then write whole; the elements are not
-/// written (what the block holds stays). Measured on a 2-core virtual machine, the 72 MB of the weld's first pass on a
-/// 4.8M-triangle soup: faulted in by the two threads of the pass that writes them, the pass took
-/// 0.115-0.14 s; after this call (4 ms), 0.08-0.10 s; the same population split between the two
-/// threads took 12 ms instead of 4 (the faults of one process do not run in parallel there).
-/// On one thread the call costs what the pass's own faults cost. Nothing is done where the kernel
-/// or the build has no such call (the pass then faults the pages in itself, as before), nor for a
-/// smaller block.
+/// written (what the block holds stays). Measured on a 2-core virtual machine, the 72 MB of the
+/// weld's first pass on a 4.8M-triangle soup: faulted in by the two threads of the pass that
+/// writes them, the pass took 0.115-0.14 s; after this call (4 ms), 0.08-0.10 s; the same
+/// population split between the two threads took 12 ms instead of 4 (the faults of one process
+/// do not run in parallel there). On one thread the call costs what the pass's own faults cost.
+/// Nothing is done where the kernel or the build has no such call (the pass then faults the
+/// pages in itself, as before), nor for a smaller block.
 template <class T, class Allocator>
 void fault_in_pages(std::vector<T, Allocator>& v)
 {
