@@ -19,6 +19,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace {
@@ -568,12 +569,22 @@ TEST(ParallelUninitializedTables, LargeTablesInHugePages)
 #endif
 }
 
-// The number of the 4 KiB pages inside the `bytes` bytes at `block` that are resident.
+// The size of the system's pages.
+std::size_t page_bytes()
+{
+#if defined(__linux__)
+  const long size = sysconf(_SC_PAGESIZE);
+  if(size > 0) return static_cast<std::size_t>(size);
+#endif
+  return 4096;
+}
+
+// The number of the system's pages inside the `bytes` bytes at `block` that are resident.
 std::size_t resident_pages(const void* block, std::size_t bytes)
 {
   std::size_t resident = 0;
 #if defined(__linux__)
-  constexpr std::uintptr_t page = 4096;
+  const std::uintptr_t page = page_bytes();
   const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(block) + page - 1) & ~(page - 1);
   const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(block) + bytes) & ~(page - 1);
   if(first >= last) return 0;
@@ -607,11 +618,12 @@ TEST(ParallelUninitializedTables, LargeTablesAreFaultedInBeforeTheirPasses)
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES) && defined(MADV_POPULATE_WRITE)
   if(huge_page_advice_is_visible()) {
     // whether this kernel populates at all (an older one refuses the advice)
-    void* probe = mmap(nullptr, 4096, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    const std::size_t page = page_bytes();
+    void* probe = mmap(nullptr, page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     ASSERT_NE(probe, MAP_FAILED);
-    const bool populates = madvise(probe, 4096, MADV_POPULATE_WRITE) == 0;
-    munmap(probe, 4096);
-    const std::size_t bytes = large * sizeof(std::uint64_t), pages = bytes / 4096;
+    const bool populates = madvise(probe, page, MADV_POPULATE_WRITE) == 0;
+    munmap(probe, page);
+    const std::size_t bytes = large * sizeof(std::uint64_t), pages = bytes / page;
     ST::internal::Uninitialized_vector<std::uint64_t> untouched(large), fresh(large);
     EXPECT_EQ(resident_pages(untouched.data(), bytes), 0u) << "a fresh block that nothing touched";
     ST::internal::fault_in_pages(fresh);

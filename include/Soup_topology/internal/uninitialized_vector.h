@@ -39,6 +39,7 @@
 
 #if defined(__linux__) && !defined(SOUP_TOPOLOGY_NO_HUGE_PAGES)
 #include <sys/mman.h>
+#include <unistd.h>
 #if defined(MADV_HUGEPAGE)
 #define SOUP_TOPOLOGY_HUGE_PAGES 1
 #endif
@@ -66,6 +67,17 @@ constexpr bool is_huge_page_block(std::size_t bytes)
 constexpr std::size_t huge_page_bytes = std::size_t(2) << 20;
 
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES)
+/// the size of the system's pages, the unit of `madvise()`'s ranges (4 KiB on x86-64; 16 or
+/// 64 KiB on some other kernels).
+inline std::uintptr_t system_page_bytes()
+{
+  static const std::uintptr_t bytes = [] {
+    const long size = sysconf(_SC_PAGESIZE);
+    return size > 0 ? static_cast<std::uintptr_t>(size) : std::uintptr_t(4096);
+  }();
+  return bytes;
+}
+
 /// gives `advice` (`madvise()`) to the whole pages of `page` bytes (a power of two) inside the
 /// `bytes` bytes at `block`, if there is one.
 inline void advise_whole_pages(void* block, std::size_t bytes, std::uintptr_t page, int advice)
@@ -186,7 +198,7 @@ void fault_in_pages(std::vector<T, Allocator>& v)
 {
 #if defined(SOUP_TOPOLOGY_HUGE_PAGES) && defined(MADV_POPULATE_WRITE)
   const std::size_t bytes = v.size() * sizeof(T);
-  if(bytes >= huge_page_block_bytes) advise_whole_pages(v.data(), bytes, 4096, MADV_POPULATE_WRITE);
+  if(bytes >= huge_page_block_bytes) advise_whole_pages(v.data(), bytes, system_page_bytes(), MADV_POPULATE_WRITE);
 #else
   (void)v;
 #endif
