@@ -227,9 +227,10 @@ struct Loop_level
   /// `edge_of`, `number_of_edges` and the halves of level 0 as the sequential pass of
   /// `initialize()` and `compute_halves()` give them, by blocks of triangles on TBB's threads:
   /// the edges owned by each block counted; then numbered in the block from the counts' prefix
-  /// sums, each with its first half (its owner's), and, for a border or non-manifold edge, its
-  /// second half and count; then the other half-edges take their owner's number, and the second
-  /// half of a manifold edge is written by its second triangle. Every entry is written once.
+  /// sums, each with its first half (its owner's), its second half and its count: the owner of a
+  /// manifold edge also numbers the edge's half in its neighbour (of a larger index, maybe in
+  /// another block). Last, the other halves of the non-manifold edges take their owner's number.
+  /// Every entry is written once.
   template <class ConcurrencyTag>
   void number_edges_by_blocks(const Adjacency_tables& adj, const Non_manifold_halves& non_manifold)
   {
@@ -267,23 +268,19 @@ struct Loop_level
             half2[id] = entry.second;
             count[id] = entry.count;
           } else {
-            count[id] = 2; // its second half is written below, by its other triangle
+            // the edge's half in u (tt < u, its owner is tt): written here only
+            const int j = adj.edge_index(u, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
+            const std::size_t other = 3 * std::size_t(u) + std::size_t(j);
+            edge_of[other] = id;
+            half2[id] = static_cast<Index>(other);
+            count[id] = 2;
           }
         }
     });
-    for_each_block<ConcurrencyTag>(m, default_block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for(std::size_t t = begin; t != end; ++t)
-        for(int i = 0; i < 3; ++i) {
-          const size_type tt = static_cast<size_type>(t);
-          const size_type owner = owner_of_edge(adj, non_manifold, tt, i);
-          if(owner == tt) continue;
-          const int j = adj.edge_index(owner, adj.vertex(tt, i), adj.vertex(tt, (i + 1) % 3));
-          const Index id = edge_of[3 * std::size_t(owner) + std::size_t(j)];
-          edge_of[3 * t + std::size_t(i)] = id;
-          const size_type u = adj.neighbor(tt, i);
-          if(u != Adjacency_tables::border_edge && u != Adjacency_tables::non_manifold_edge)
-            half2[id] = static_cast<Index>(3 * t + std::size_t(i));
-        }
+    // (after the pass above, which numbered the first half of every edge)
+    for_each_index<ConcurrencyTag>(non_manifold.by_half.size(), [&](std::size_t k) {
+      const typename Non_manifold_halves::Entry& entry = non_manifold.by_half[k];
+      if(entry.half != entry.first) edge_of[entry.half] = edge_of[entry.first];
     });
   }
 
