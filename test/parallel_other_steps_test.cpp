@@ -203,9 +203,9 @@ TEST(ParallelLoopSubdivision, EdgesNumberedByBlocksAcrossBordersAndFins)
   });
 }
 
-// The ring rows of `level` list, for every vertex, the edges whose other ends the sequential
-// smoothing adds to it, in the order in which it adds them, with those other ends; returns the
-// number of vertices whose row differs.
+// The ring rows of `level` (stored, or following from the level before) list, for every vertex,
+// the edges whose other ends the sequential smoothing adds to it, in the order in which it adds
+// them, with those other ends; returns the number of vertices whose row differs.
 std::size_t ring_rows_unlike_sequential_sums(const ST::internal::Loop_level& level)
 {
   using Level = ST::internal::Loop_level;
@@ -222,8 +222,9 @@ std::size_t ring_rows_unlike_sequential_sums(const ST::internal::Loop_level& lev
   std::size_t unlike = 0;
   for(std::size_t v = 0; v < n; ++v) {
     std::vector<std::pair<Level::Index, Level::Index>> row;
-    for(std::size_t j = level.ring_first[v]; j != level.ring_first[v + 1]; ++j)
-      row.push_back({level.ring[j].edge, level.ring[j].other});
+    level.for_each_ring_entry(static_cast<Level::Index>(v), [&](Level::Index edge, Level::Index other) {
+      row.push_back({edge, other});
+    });
     if(row != sums[v]) ++unlike;
   }
   return unlike;
@@ -233,8 +234,9 @@ TEST(ParallelLoopSubdivision, RingRowsListTheSequentialSumsAtEveryLevel)
 {
   // The smoothing on several threads sums the ring of every vertex over its row: built at level 0
   // from the tables, carried to the next levels by refine(). Every row of levels 0 to 3 against
-  // the sums of the sequential pass, on a mesh with borders, fins, creases and corners; then three
-  // levels of subdivision against the sequential ones (the third reads the edges of level 1's rows).
+  // the sums of the sequential pass, on a mesh with borders, fins, creases and corners (level 3's
+  // rows not stored: they follow from level 2's); then three levels of subdivision against the
+  // sequential ones (the third reads the edges of level 1's rows).
   const Mesh_data m = load("clean/fandisk.off.xz");
   std::vector<Point> points = m.points;
   std::size_t fins = 0;
@@ -255,10 +257,21 @@ TEST(ParallelLoopSubdivision, RingRowsListTheSequentialSumsAtEveryLevel)
     EXPECT_GT(kinds[std::size_t(ST::internal::Loop_vertex_kind::CORNER)], 10u);
     EXPECT_EQ(ring_rows_unlike_sequential_sums(level), 0u);
     for(int k = 1; k <= 3; ++k) {
-      level.refine<Parallel>(level.kind.size());
+      level.refine<Parallel>(level.kind.size(), k < 3);
+      EXPECT_EQ(level.stores_ring_rows(level.kind.size()), k < 3) << "level " << k;
       EXPECT_EQ(ring_rows_unlike_sequential_sums(level), 0u) << "level " << k;
     }
     ASSERT_GT(level.number_of_edges, 2 * ST::internal::default_block_size); // refined by several blocks
+    // rows that follow from the level before are not carried on: the next level has none
+    ST::internal::Loop_level small;
+    small.initialize<Parallel>(tables);
+    small.build_ring_rows<Parallel>(tables);
+    small.refine<Parallel>(small.kind.size(), false);
+    EXPECT_TRUE(small.has_ring_rows(small.kind.size()));
+    EXPECT_FALSE(small.stores_ring_rows(small.kind.size()));
+    EXPECT_EQ(ring_rows_unlike_sequential_sums(small), 0u);
+    small.refine<Parallel>(small.kind.size());
+    EXPECT_FALSE(small.has_ring_rows(small.kind.size()));
     auto p = points;
     auto t = soup;
     ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(3));

@@ -96,6 +96,11 @@ struct Loop_level
   struct Ring_entry { Index edge, other; };
   Uninitialized_vector<std::size_t> ring_first;
   Uninitialized_vector<Ring_entry> ring;
+  // Or, after the last refinement of a subdivision, the level this one was refined from, with its
+  // ring rows and edges, and its number of vertices: the rows of this level follow from them
+  // (`for_each_ring_entry()`), and are not stored (see `refine()`).
+  std::shared_ptr<const Loop_level> parent;
+  std::size_t parent_vertices = 0;
 
   bool is_crease(Index e) const { return count[e] != 2; }
   Index first_vertex(Index e) const { return triangles[half1[e] / 3][half1[e] % 3]; }
@@ -125,6 +130,10 @@ struct Loop_level
   {
     using size_type = Adjacency_tables::size_type;
     const std::size_t m = adj.number_of_triangles(), n = adj.number_of_vertices();
+    decltype(ring_first)().swap(ring_first); // (no rows yet)
+    decltype(ring)().swap(ring);
+    parent.reset();
+    parent_vertices = 0;
     triangles.assign(adj.triangles().begin(), adj.triangles().end());
     const Non_manifold_halves non_manifold = non_manifold_halves<ConcurrencyTag>(adj);
     if(runs_on_several_threads<ConcurrencyTag>()) {
@@ -284,8 +293,35 @@ struct Loop_level
     });
   }
 
-  /// `true` if the ring rows of the `n` vertices of this level are there (see `ring_first`).
-  bool has_ring_rows(std::size_t n) const { return ring_first.size() == n + 1; }
+  /// `true` if the ring rows of the `n` vertices of this level are stored (see `ring_first`).
+  bool stores_ring_rows(std::size_t n) const { return ring_first.size() == n + 1; }
+
+  /// `true` if the ring rows of the `n` vertices of this level are there: stored, or following
+  /// from those of the level it was refined from (see `parent`).
+  bool has_ring_rows(std::size_t n) const
+  {
+    return stores_ring_rows(n) || (parent != nullptr && parent_vertices + parent->number_of_edges == n);
+  }
+
+  /// calls `f(edge, other)` for the entries of the ring row of vertex `v`, in order (see `ring`);
+  /// the rows are there (`has_ring_rows()`).
+  template <class F>
+  void for_each_ring_entry(Index v, const F& f) const
+  {
+    if(parent == nullptr) {
+      for(std::size_t j = ring_first[v]; j != ring_first[v + 1]; ++j) f(ring[j].edge, ring[j].other);
+      return;
+    }
+    const std::size_t n = parent_vertices;
+    if(v >= n) {
+      parent->ring_of_edge_point(static_cast<Index>(v - n), n, f);
+      return;
+    }
+    for(std::size_t j = parent->ring_first[v]; j != parent->ring_first[v + 1]; ++j) {
+      const Ring_entry r = parent->ring[j];
+      f(2 * r.edge + (v < r.other ? 0 : 1), static_cast<Index>(n + r.edge));
+    }
+  }
 
   /// the ring rows of level 0 (after `initialize()`), vertex by vertex on TBB's threads with the
   /// tag. A smooth vertex has as many edges as triangles (it has no crease edge), a crease vertex
@@ -298,6 +334,8 @@ struct Loop_level
   {
     using size_type = Adjacency_tables::size_type;
     const std::size_t n = kind.size();
+    parent.reset();
+    parent_vertices = 0;
     ring_first.resize(n + 1); // every entry written below
     ring_first[0] = 0;
     for_each_index<ConcurrencyTag>(n, [&](std::size_t v) {
@@ -382,8 +420,14 @@ struct Loop_level
   /// the three inner edges of `t` are `2E + 3t + k`. The halves and counts of the new edges follow
   /// from the old ones without a search. Every triangle and every edge is done on its own (in
   /// parallel with the tag).
+  ///
+  /// Stored ring rows are carried on: stored again if `store_ring_rows` (`refine_ring_rows()`),
+  /// otherwise kept with the old level's edges as the new level's `parent`, from which the new
+  /// rows follow: less memory, and less time, for the last level of a subdivision, whose rows no
+  /// refinement reads. Rows that are not stored are not carried on: the smoothing of the new level
+  /// is then sequential.
   template <class ConcurrencyTag = CGAL::Sequential_tag>
-  void refine(std::size_t n)
+  void refine(std::size_t n, bool store_ring_rows = true)
   {
     const std::size_t m = triangles.size(), E = number_of_edges, E2 = 2 * E + 3 * m;
     Uninitialized_vector<std::array<Index, 3>> children(4 * m); // 4 per triangle, written below
@@ -438,7 +482,25 @@ struct Loop_level
     for_each_index<ConcurrencyTag>(E, [&](std::size_t e) {
       kind[n + e] = is_crease(static_cast<Index>(e)) ? Loop_vertex_kind::CREASE : Loop_vertex_kind::SMOOTH;
     });
-    if(has_ring_rows(n)) refine_ring_rows<ConcurrencyTag>(n);
+    std::shared_ptr<Loop_level> old;
+    if(stores_ring_rows(n) && store_ring_rows) {
+      refine_ring_rows<ConcurrencyTag>(n);
+    } else if(stores_ring_rows(n)) {
+      old = std::make_shared<Loop_level>();
+      old->triangles.swap(triangles);
+      old->edge_of.swap(edge_of);
+      old->half1.swap(half1);
+      old->half2.swap(half2);
+      old->count.swap(count);
+      old->number_of_edges = E;
+      old->ring_first.swap(ring_first);
+      old->ring.swap(ring);
+    } else {
+      decltype(ring_first)().swap(ring_first);
+      decltype(ring)().swap(ring);
+    }
+    parent = std::move(old);
+    parent_vertices = parent != nullptr ? n : 0;
     edge_of.swap(child_edges);
     number_of_edges = E2;
     triangles.swap(children);
@@ -479,30 +541,40 @@ struct Loop_level
     for_each_block<ConcurrencyTag>(E, default_block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
       std::size_t at = ring_first[n] + in_block[b];
       for(std::size_t i = begin; i != end; ++i) {
-        const Index e = static_cast<Index>(i), a = first_vertex(e), c = second_vertex(e);
         first[n + i] = at;
-        rows[at++] = {2 * e, std::min(a, c)};
-        rows[at++] = {2 * e + 1, std::max(a, c)};
-        if(is_crease(e)) continue;
-        // The point of e, edge k of triangle t, is on the inner edges k (to the point of edge
-        // k + 2) and k + 1 (to that of edge k + 1), numbered 2E + 3t + k and 2E + 3t + (k + 1) % 3.
-        for(const Index half : {std::min(half1[e], half2[e]), std::max(half1[e], half2[e])}) {
-          const Index t = half / 3, k = half % 3, inner = static_cast<Index>(2 * E + 3 * t);
-          const Index to_k2 = static_cast<Index>(n + edge_of[3 * t + (k + 2) % 3]);
-          const Index to_k1 = static_cast<Index>(n + edge_of[3 * t + (k + 1) % 3]);
-          if(k < 2) {
-            rows[at++] = {inner + k, to_k2};
-            rows[at++] = {inner + k + 1, to_k1};
-          } else {
-            rows[at++] = {inner, to_k1};
-            rows[at++] = {inner + 2, to_k2};
-          }
-        }
+        ring_of_edge_point(static_cast<Index>(i), n, [&](Index edge, Index other) { rows[at++] = {edge, other}; });
       }
     });
     first[n + E] = total;
     ring_first.swap(first);
     ring.swap(rows);
+  }
+
+  /// calls `f(edge, other)` for the entries of the ring row that the point of edge `e` of this
+  /// level (of `n` vertices) has in the next level (see `refine_ring_rows()`), in order: 2
+  /// entries for a crease edge, 6 for a smooth one.
+  template <class F>
+  void ring_of_edge_point(Index e, std::size_t n, const F& f) const
+  {
+    const std::size_t E = number_of_edges;
+    const Index a = first_vertex(e), c = second_vertex(e);
+    f(2 * e, std::min(a, c));
+    f(2 * e + 1, std::max(a, c));
+    if(is_crease(e)) return;
+    // The point of e, edge k of triangle t, is on the inner edges k (to the point of edge
+    // k + 2) and k + 1 (to that of edge k + 1), numbered 2E + 3t + k and 2E + 3t + (k + 1) % 3.
+    for(const Index half : {std::min(half1[e], half2[e]), std::max(half1[e], half2[e])}) {
+      const Index t = half / 3, k = half % 3, inner = static_cast<Index>(2 * E + 3 * t);
+      const Index to_k2 = static_cast<Index>(n + edge_of[3 * t + (k + 2) % 3]);
+      const Index to_k1 = static_cast<Index>(n + edge_of[3 * t + (k + 1) % 3]);
+      if(k < 2) {
+        f(inner + k, to_k2);
+        f(inner + k + 1, to_k1);
+      } else {
+        f(inner, to_k1);
+        f(inner + 2, to_k2);
+      }
+    }
   }
 };
 
@@ -592,10 +664,12 @@ void loop_smooth_in_parallel(const Loop_level& level, const std::vector<typename
     const Index v = static_cast<Index>(i);
     const Loop_vertex_kind kind = level.kind[v];
     if(kind == Loop_vertex_kind::CORNER) { out[v] = in[v]; return; }
-    const std::size_t first = level.ring_first[v], last = level.ring_first[v + 1];
     Vector sum(CGAL::NULL_VECTOR);
-    for(std::size_t j = first; j != last; ++j) sum = stencils.add(sum, stencils.vec(level.ring[j].other));
-    const std::size_t valence = last - first;
+    std::size_t valence = 0;
+    level.for_each_ring_entry(v, [&](Index, Index other) {
+      sum = stencils.add(sum, stencils.vec(other));
+      ++valence;
+    });
     out[v] = kind == Loop_vertex_kind::SMOOTH ? stencils.smooth_vertex_point(v, sum, valence, loop_beta_value(choice, valence))
                                               : stencils.crease_vertex_point(v, sum);
   });
@@ -1041,7 +1115,8 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
          4 * std::uint64_t(level.triangles.size()) >= std::uint64_t(Adjacency_tables::non_manifold_edge))
         throw Invalid_input("loop_subdivision: level " + std::to_string(it + 1) + " would exceed 32-bit indices");
       internal::loop_smooth<ConcurrencyTag>(level, current, next, choice, gt);
-      if(it + 1 < iterations) level.refine<ConcurrencyTag>(current.size());
+      // (the rows of the last level follow from those of the level before: not stored)
+      if(it + 1 < iterations) level.refine<ConcurrencyTag>(current.size(), it + 2 < iterations);
       else level.write_children<ConcurrencyTag>(current.size(), triangles);   // the caller's triangles, from here on
       current.swap(next);
     }
