@@ -13,6 +13,8 @@
 
 #include "parallel_test_utilities.h"
 
+#include <new>
+
 namespace {
 
 // --- the orientation and subdivision -------------------------------------------------------------
@@ -228,6 +230,49 @@ std::size_t ring_rows_unlike_sequential_sums(const ST::internal::Loop_level& lev
     if(row != sums[v]) ++unlike;
   }
   return unlike;
+}
+
+// A container of triangles whose growth beyond `limit` fails, as a `resize()` does when the
+// memory runs out.
+struct Triangles_up_to_a_limit : std::vector<Triangle>
+{
+  std::size_t limit = 0;
+  void reserve(std::size_t n)
+  {
+    if(n > limit) throw std::bad_alloc();
+    std::vector<Triangle>::reserve(n);
+  }
+  void resize(std::size_t n)
+  {
+    if(n > limit) throw std::bad_alloc();
+    std::vector<Triangle>::resize(n);
+  }
+};
+
+TEST(ParallelLoopSubdivision, AFailedGrowthOfTheTrianglesLeavesTheSoupAsItWas)
+{
+  // The caller's triangles are grown beside the last level's smoothing on several threads: the
+  // failure of that growth reaches the caller, and the points and triangles are those given.
+  const Mesh_data m = load("clean/fandisk.off.xz");
+  Triangles_up_to_a_limit given;
+  given.assign(m.triangles.begin(), m.triangles.end());
+  given.limit = 16 * given.size() - 1; // two levels need 16 times the triangles
+  for_each_thread_count([&](int threads) {
+    std::vector<Point> p = m.points;
+    Triangles_up_to_a_limit t = given;
+    EXPECT_THROW(ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(2)), std::bad_alloc)
+      << threads << " threads";
+    EXPECT_EQ(bits(p), bits(m.points)) << threads << " threads";
+    EXPECT_TRUE(static_cast<const std::vector<Triangle>&>(t) == m.triangles) << threads << " threads";
+    // and with room enough, the subdivision of a plain vector
+    t.limit = 16 * given.size();
+    ST::loop_subdivision<Parallel>(p, t, CGAL::parameters::number_of_iterations(2));
+    std::vector<Point> ep = m.points;
+    std::vector<Triangle> et = m.triangles;
+    ST::loop_subdivision(ep, et, CGAL::parameters::number_of_iterations(2));
+    EXPECT_EQ(bits(p), bits(ep)) << threads << " threads";
+    EXPECT_TRUE(static_cast<const std::vector<Triangle>&>(t) == et) << threads << " threads";
+  });
 }
 
 TEST(ParallelLoopSubdivision, RingRowsListTheSequentialSumsAtEveryLevel)

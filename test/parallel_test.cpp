@@ -13,8 +13,12 @@
 
 #include "parallel_test_utilities.h"
 
+#include <atomic>
+#include <chrono>
 #include <deque>
+#include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #if defined(__linux__)
@@ -437,6 +441,47 @@ TEST(ParallelSortByKey, StableAndTheSequentialOrder)
     for(std::size_t i = 0; i < unzeroed.size(); ++i) different += unzeroed[i].id != expected[i].id;
     EXPECT_EQ(different, 0u);
     EXPECT_EQ(ST::internal::largest_tolerance_cell<Parallel>(cloud, 0.01), expected_cell);
+  });
+}
+
+TEST(ParallelSideBySide, BothRunAndNeitherRunsOnAfterAnError)
+{
+  // Two independent tasks, the second itself parallel; then either one throwing while the other
+  // is still at work: the error reaches the caller only once the other has ended (or, cancelled
+  // before it started, never ran). Sequentially the first runs before the second.
+  const std::size_t n = 9 * ST::internal::default_block_size + 5;
+  const auto sum_of_squares = [&] {
+    std::vector<std::uint64_t> squares(n);
+    ST::internal::for_each_index<Parallel>(n, [&](std::size_t i) { squares[i] = std::uint64_t(i) * i; });
+    return std::accumulate(squares.begin(), squares.end(), std::uint64_t(0));
+  };
+  const std::uint64_t expected = sum_of_squares();
+  bool first_ran = false, first_seen_by_second = false;
+  ST::internal::run_side_by_side<CGAL::Sequential_tag>([&] { first_ran = true; },
+                                                       [&] { first_seen_by_second = first_ran; });
+  EXPECT_TRUE(first_seen_by_second);
+  for_each_thread_count([&](int threads) {
+    std::uint64_t side = 0, main = 0;
+    ST::internal::run_side_by_side<Parallel>([&] { side = sum_of_squares(); }, [&] { main = sum_of_squares(); });
+    EXPECT_EQ(side, expected) << threads << " threads";
+    EXPECT_EQ(main, expected) << threads << " threads";
+    for(const bool first_throws : {true, false}) {
+      std::atomic<int> started{0}, ended{0};
+      const auto slow = [&] {
+        ++started;
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        ++ended;
+      };
+      const auto throws = [] { throw std::runtime_error("side by side"); };
+      try {
+        if(first_throws) ST::internal::run_side_by_side<Parallel>(throws, slow);
+        else ST::internal::run_side_by_side<Parallel>(slow, throws);
+        ADD_FAILURE() << "no exception, " << threads << " threads";
+      } catch(const std::runtime_error& e) {
+        EXPECT_STREQ(e.what(), "side by side");
+      }
+      EXPECT_EQ(started.load(), ended.load()) << threads << " threads, the first throws: " << first_throws;
+    }
   });
 }
 

@@ -1100,10 +1100,15 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
 
   const std::size_t n = static_cast<std::size_t>(std::distance(std::begin(points), std::end(points)));
   internal::check_finite_points(points, point_map);
-  const Adjacency_tables adj(triangles, n, ConcurrencyTag());   // validates the triangles
+  // the tables (which validate the triangles) and the copy of the points, side by side with the tag
+  Adjacency_tables adj;
   std::vector<Point> current;
-  internal::reserve_in_huge_pages(current, n);
-  for(const auto& p : points) current.push_back(get(point_map, p));
+  internal::run_side_by_side<ConcurrencyTag>(
+    [&] {
+      internal::reserve_in_huge_pages(current, n);
+      for(const auto& p : points) current.push_back(get(point_map, p));
+    },
+    [&] { adj = Adjacency_tables(triangles, n, ConcurrencyTag()); });
   if(iterations > 0) {
     internal::Loop_level level;
     level.initialize<ConcurrencyTag>(adj);
@@ -1114,13 +1119,28 @@ void loop_subdivision(PointRange& points, TriangleRange& triangles,
       if(size >= std::uint64_t(Adjacency_tables::non_manifold_edge) ||
          4 * std::uint64_t(level.triangles.size()) >= std::uint64_t(Adjacency_tables::non_manifold_edge))
         throw Invalid_input("loop_subdivision: level " + std::to_string(it + 1) + " would exceed 32-bit indices");
-      internal::loop_smooth<ConcurrencyTag>(level, current, next, choice, gt);
-      // (the rows of the last level follow from those of the level before: not stored)
-      if(it + 1 < iterations) level.refine<ConcurrencyTag>(current.size(), it + 2 < iterations);
-      else level.write_children<ConcurrencyTag>(current.size(), triangles);   // the caller's triangles, from here on
+      if(it + 1 < iterations) {
+        internal::loop_smooth<ConcurrencyTag>(level, current, next, choice, gt);
+        // (the rows of the last level follow from those of the level before: not stored)
+        level.refine<ConcurrencyTag>(current.size(), it + 2 < iterations);
+      } else {
+        // The caller's triangles are grown (their `resize()` zeroes them) beside the last smoothing,
+        // which does not read them; if either fails, they are shrunk back to what they were.
+        const std::size_t held = static_cast<std::size_t>(std::distance(std::begin(triangles), std::end(triangles)));
+        try {
+          internal::run_side_by_side<ConcurrencyTag>(
+            [&] { internal::resize_in_huge_pages(triangles, 4 * level.triangles.size()); },
+            [&] { internal::loop_smooth<ConcurrencyTag>(level, current, next, choice, gt); });
+        } catch(...) {
+          triangles.resize(held);
+          throw;
+        }
+        level.write_children<ConcurrencyTag>(current.size(), triangles);
+      }
       current.swap(next);
     }
-    // Nothing above but the last statement of the loop modified the caller's containers.
+    // Nothing above but the growth of the caller's triangles and `write_children()` modified the
+    // caller's containers.
     if constexpr(std::is_same<PointRange, std::vector<Point>>::value &&
                  std::is_same<Point_map, CGAL::Identity_property_map<Point>>::value) {
       points.swap(current);

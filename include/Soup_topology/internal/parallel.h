@@ -21,6 +21,7 @@
 #else
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/partitioner.h>
 #endif
 #endif
@@ -148,6 +149,46 @@ void for_each_index(std::size_t n, const F& f, std::size_t block_size = default_
   for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
     for(std::size_t i = begin; i != end; ++i) f(i);
   });
+}
+
+/// calls `f()` and `g()`, which must be independent of each other: side by side when
+/// `ConcurrencyTag` asks for it and TBB allows more than one thread (`g` may run in parallel
+/// itself: the thread that is done with `f` then helps it), one after the other otherwise. Neither
+/// runs any more when it returns. If either threw, one of the exceptions is rethrown then, and
+/// the other may not have run at all. (Under ThreadSanitizer `f` runs on a thread of the standard
+/// library: see `run_blocks_on_standard_threads()`.)
+template <class ConcurrencyTag, class F, class G>
+void run_side_by_side(const F& f, const G& g)
+{
+#if defined(CGAL_LINKED_WITH_TBB)
+  if constexpr(runs_in_parallel<ConcurrencyTag>()) {
+    if(runs_on_several_threads<ConcurrencyTag>()) {
+#if defined(__SANITIZE_THREAD__)
+      std::exception_ptr failure_of_f, failure_of_g;
+      std::thread side([&] {
+        try {
+          f();
+        } catch(...) {
+          failure_of_f = std::current_exception();
+        }
+      });
+      try {
+        g();
+      } catch(...) {
+        failure_of_g = std::current_exception();
+      }
+      side.join();
+      if(failure_of_f) std::rethrow_exception(failure_of_f);
+      if(failure_of_g) std::rethrow_exception(failure_of_g);
+#else
+      tbb::parallel_invoke(f, g);
+#endif
+      return;
+    }
+  }
+#endif
+  f();
+  g();
 }
 
 /// turns `counts` into their exclusive prefix sums and returns the total (sequential: callers
