@@ -1044,7 +1044,8 @@ std::vector<Value> evaluate_limit_stencils(const PointRange& points, const Trian
 /// With `CGAL::Parallel_tag` every rule runs on TBB's threads (for coordinates stored as `double`;
 /// the tables and the edge bookkeeping whatever the coordinates): the points and triangles are
 /// the same, bit for bit and in the same order, on any number of threads
-/// (`doc/Soup_topology/Parallel.md`).
+/// (`doc/Soup_topology/Parallel.md`). The input points are then read through `point_map` on one
+/// of TBB's threads, beside the build of the tables.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
 ///         or `CGAL::Parallel_if_available_tag`
