@@ -396,6 +396,108 @@ TEST(ParallelUnionFind, ConcurrentUnionsGiveTheSequentialSetsAndRoots)
   });
 }
 
+TEST(ParallelUnionFind, ParitiesByBlocksAsByAColouringOfTheGraph)
+{
+  // A graph whose every id has a label (0 or 1) and whose edges say whether their ends' labels
+  // differ; the components without a wrong edge are two-coloured by the labels, each wrong edge
+  // (a parity contradicting the labels) makes its component contradictory. The components are
+  // groups of ids: runs of consecutive ids in the lower half (mostly inside a block), ids spread
+  // over the whole upper half in the others (across every block), each a random spanning tree
+  // and more edges, one group in seven with a wrong edge. The unions are made by blocks of ids on
+  // the threads, each alone with the edges inside it, then one thread with the edges between
+  // blocks, as the orientation makes them; the finds run on every thread at once. Expected, from
+  // a breadth-first search: every id's root is the smallest id of its component, its parity the
+  // labels' difference where the component has no contradiction, and the contradictions reported
+  // are those of the components holding a wrong edge.
+  const std::uint32_t n = 150000, block = 4096, run = 500, spread = 150;
+  std::mt19937 rng(11);
+  std::vector<char> label(n);
+  for(char& l : label) l = static_cast<char>(rng() % 2);
+  struct Edge { std::uint32_t a, b; bool differ; };
+  std::vector<Edge> edges;
+  const auto add = [&](std::uint32_t a, std::uint32_t b, bool wrong) {
+    if(a == b) return;
+    edges.push_back(Edge{a, b, (label[a] != label[b]) != wrong});
+  };
+  std::vector<std::vector<std::uint32_t>> groups((n / 2) / run + spread);
+  for(std::uint32_t x = 0; x < n; ++x) groups[x < n / 2 ? x / run : (n / 2) / run + x % spread].push_back(x);
+  for(std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::uint32_t> members = groups[g];
+    std::shuffle(members.begin(), members.end(), rng);
+    for(std::size_t k = 1; k < members.size(); ++k) add(members[rng() % k], members[k], false);
+    for(std::size_t k = 0; k < members.size() / 2; ++k) {
+      const std::uint32_t a = members[rng() % members.size()];
+      add(a, members[rng() % members.size()], false);
+    }
+    if(g % 7 == 3) add(members[0], members[members.size() / 2], true);
+  }
+  std::shuffle(edges.begin(), edges.end(), rng);
+  // The expected components (smallest id) and contradictions, by a breadth-first search.
+  std::vector<std::vector<std::pair<std::uint32_t, bool>>> adjacent(n);
+  for(const Edge& e : edges) {
+    adjacent[e.a].emplace_back(e.b, e.differ);
+    adjacent[e.b].emplace_back(e.a, e.differ);
+  }
+  std::vector<std::uint32_t> component(n, n);
+  std::vector<char> parity(n, 0), contradictory(n, 0);
+  for(std::uint32_t s = 0; s < n; ++s) {
+    if(component[s] != n) continue;
+    std::vector<std::uint32_t> queue{s};
+    component[s] = s;
+    for(std::size_t h = 0; h < queue.size(); ++h)
+      for(const auto& [w, differ] : adjacent[queue[h]]) {
+        const char expected = static_cast<char>(parity[queue[h]] != (differ ? 1 : 0));
+        if(component[w] == n) {
+          component[w] = s;
+          parity[w] = expected;
+          queue.push_back(w);
+        } else if(parity[w] != expected) {
+          contradictory[s] = 1;
+        }
+      }
+  }
+  ASSERT_GT(std::count(contradictory.begin(), contradictory.end(), char(1)), 30);
+  ASSERT_GT(std::count(component.begin(), component.end(), std::uint32_t(0)), 400);
+  for_each_thread_count([&](int) {
+    ST::internal::Parity_union_find sets(n);
+    const std::size_t blocks = ST::internal::number_of_blocks(n, block);
+    std::vector<std::vector<Edge>> inside(blocks);
+    std::vector<Edge> between;
+    for(const Edge& e : edges) {
+      const std::uint32_t lo = std::min(e.a, e.b), hi = std::max(e.a, e.b);
+      if(lo / block == hi / block) inside[lo / block].push_back(e);
+      else between.push_back(e);
+    }
+    std::vector<std::vector<std::uint32_t>> refused(blocks + 1);
+    ST::internal::for_each_block<Parallel>(n, block, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      sets.make_singletons(begin, end);
+      for(const Edge& e : inside[b])
+        if(!sets.unite_alone(e.a, e.b, e.differ)) refused[b].push_back(e.a);
+    });
+    for(const Edge& e : between)
+      if(!sets.unite_alone(e.a, e.b, e.differ)) refused[blocks].push_back(e.a);
+    std::vector<std::uint32_t> root(n);
+    std::vector<char> found_parity(n);
+    ST::internal::for_each_index<Parallel>(n, [&](std::size_t x) {
+      const auto [r, p] = sets.find(static_cast<std::uint32_t>(x));
+      root[x] = r;
+      found_parity[x] = p ? 1 : 0;
+    }, 512);
+    std::size_t wrong_roots = 0, wrong_parities = 0;
+    for(std::uint32_t x = 0; x < n; ++x) {
+      wrong_roots += root[x] != component[x];
+      wrong_parities += !contradictory[component[x]] && found_parity[x] != parity[x];
+      EXPECT_LE(sets.parent(x).first, x);
+    }
+    EXPECT_EQ(wrong_roots, 0u);
+    EXPECT_EQ(wrong_parities, 0u);
+    std::vector<char> reported(n, 0);
+    for(const auto& list : refused)
+      for(std::uint32_t x : list) reported[component[x]] = 1;
+    EXPECT_EQ(reported, contradictory);
+  });
+}
+
 TEST(ParallelSortByKey, StableAndTheSequentialOrder)
 {
   // Keys with many repeats (stability shows), some digits shared by all keys (skipped passes),

@@ -3,7 +3,8 @@
 //
 // Union-find over 32-bit ids whose sets keep their smallest element as root, so that the sets
 // and their roots do not depend on the order of the unions: sequential, and for several threads
-// at once. The weld's tolerance graph and the components of the adjacency tables use them.
+// at once; and with a parity between the ids of a set. The weld's tolerance graph, the components
+// of the adjacency tables and the patches of the orientation use them.
 
 #ifndef SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
 #define SOUP_TOPOLOGY_INTERNAL_UNION_FIND_H
@@ -153,6 +154,89 @@ private:
 
   std::unique_ptr<std::atomic<std::uint32_t>[]> parent_;
   std::size_t size_;
+};
+
+/// Sets of 32-bit ids that also know, for every two ids of a set, whether they *agree* or *differ*
+/// (a bit: the parity of a path between them), as the orientations of the triangles of a patch
+/// do: two triangles across a shared edge must be turned alike or one of them must be turned.
+/// Every id holds its parent and its parity relative to the parent in one word; the parity of an
+/// id relative to its root is the sum (exclusive or) of the parities along its path. The root of
+/// a set is its smallest id, whatever the order of the unions, as in `Union_find`.
+///
+/// Unions are made by one thread per group of ids (`unite_alone()`): a thread may unite ids of a
+/// block that no other thread touches meanwhile, or any ids when it runs alone. Once the unions
+/// have returned, `find()` may be called by any number of threads at once: it halves the paths
+/// it walks by compare-and-swap, each write replacing a parent by an ancestor and the parity by
+/// the parity relative to that ancestor, which stays true whatever the other threads write.
+class Parity_union_find
+{
+public:
+  /// `n` ids whose words are unset: the caller makes every id a singleton (`make_singletons()`)
+  /// before any other call, e.g. by blocks on the threads that use them.
+  explicit Parity_union_find(std::size_t n) : word_(new std::atomic<std::uint64_t>[n]) {}
+  /// makes every id of `[begin, end)` a singleton.
+  void make_singletons(std::size_t begin, std::size_t end)
+  {
+    for(std::size_t i = begin; i < end; ++i) word_[i].store(std::uint64_t(i) << 1, std::memory_order_relaxed);
+  }
+  /// the root of the set of `x` and the parity of `x` relative to it; safe on several threads
+  /// at once once the unions have returned.
+  std::pair<std::uint32_t, bool> find(std::uint32_t x)
+  {
+    bool parity = false;
+    for(;;) {
+      std::uint64_t w = word_[x].load(std::memory_order_acquire);
+      const std::uint32_t p = static_cast<std::uint32_t>(w >> 1);
+      if(p == x) return {x, parity};
+      const std::uint64_t wp = word_[p].load(std::memory_order_acquire);
+      const std::uint32_t g = static_cast<std::uint32_t>(wp >> 1);
+      if(g == p) return {p, parity != ((w & 1) != 0)};
+      const std::uint64_t step = (w ^ wp) & 1; // the parity of x relative to g
+      word_[x].compare_exchange_weak(w, (std::uint64_t(g) << 1) | step, std::memory_order_acq_rel,
+                                     std::memory_order_acquire);
+      parity = parity != (step != 0);
+      x = g;
+    }
+  }
+  /// records that `x` and `y` differ if `differ`, agree otherwise, for a thread alone with their
+  /// sets (see above). Returns `false`, changing nothing, if the sets say the opposite already.
+  bool unite_alone(std::uint32_t x, std::uint32_t y, bool differ)
+  {
+    const auto [a, pa] = find_alone(x);
+    const auto [b, pb] = find_alone(y);
+    const bool root_parity = (pa != pb) != differ;
+    if(a == b) return !root_parity;
+    word_[std::max(a, b)].store((std::uint64_t(std::min(a, b)) << 1) | std::uint64_t(root_parity),
+                                std::memory_order_relaxed);
+    return true;
+  }
+  /// the parent of `x` (at most `x`; `x` itself for a root) and the parity relative to it, once
+  /// every union has returned.
+  std::pair<std::uint32_t, bool> parent(std::uint32_t x) const
+  {
+    const std::uint64_t w = word_[x].load(std::memory_order_relaxed);
+    return {static_cast<std::uint32_t>(w >> 1), (w & 1) != 0};
+  }
+
+private:
+  // `find()` for `unite_alone()`: the path is halved by plain stores.
+  std::pair<std::uint32_t, bool> find_alone(std::uint32_t x)
+  {
+    bool parity = false;
+    for(;;) {
+      const std::uint64_t w = word_[x].load(std::memory_order_relaxed);
+      const std::uint32_t p = static_cast<std::uint32_t>(w >> 1);
+      if(p == x) return {x, parity};
+      const std::uint64_t wp = word_[p].load(std::memory_order_relaxed);
+      const std::uint32_t g = static_cast<std::uint32_t>(wp >> 1);
+      if(g == p) return {p, parity != ((w & 1) != 0)};
+      word_[x].store((std::uint64_t(g) << 1) | ((w ^ wp) & 1), std::memory_order_relaxed);
+      parity = parity != (((w ^ wp) & 1) != 0);
+      x = g;
+    }
+  }
+
+  std::unique_ptr<std::atomic<std::uint64_t>[]> word_;
 };
 
 } // namespace internal
