@@ -408,6 +408,180 @@ TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
   }
 }
 
+TEST(ParallelRobustnessSoup, OrientationOfNonOrientableAndFlatClosedPatches)
+{
+  // On several threads the patches are joined without being traversed; a patch is traversed
+  // only where a decision follows the order of a traversal. This soup has them all: Moebius
+  // strips (non-orientable: cut in a canonical traversal), one of them over several blocks;
+  // flat closed pillows (a grid and a copy of it with its own inner points, the two sharing
+  // their border) on a plane away from the origin, whose volume is 0 but sums to a few units in
+  // the last place of either sign depending on the order (the sign of the volume in the order of
+  // the traversal decides), one of them over several blocks; and cubes, two of them nested (the
+  // winding numbers). Every triangle is reversed at random and the triangles are shuffled. Every
+  // thread count gives the sequential result, with and without the tables, for each policy.
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+  std::mt19937 rng(41);
+  const auto point = [&](double x, double y, double z) {
+    points.emplace_back(x, y, z);
+    return points.size() - 1;
+  };
+  const auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
+    triangles.push_back(rng() % 2 ? Triangle{a, b, c} : Triangle{a, c, b});
+  };
+  const auto moebius = [&](double cx, int n) {
+    std::vector<std::array<std::size_t, 2>> rung(static_cast<std::size_t>(n));
+    for(int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979323846 * i / n;
+      for(int side = 0; side < 2; ++side) {
+        const double w = side ? 0.3 : -0.3, r = 2 + w * std::cos(a / 2);
+        rung[std::size_t(i)][std::size_t(side)] = point(cx + r * std::cos(a), r * std::sin(a), w * std::sin(a / 2));
+      }
+    }
+    for(int i = 0; i < n; ++i) {
+      const auto& p = rung[std::size_t(i)];
+      // the last rung meets the first one upside down: the half twist
+      const std::array<std::size_t, 2> q =
+        i + 1 < n ? rung[std::size_t(i + 1)] : std::array<std::size_t, 2>{rung[0][1], rung[0][0]};
+      add(p[0], p[1], q[0]);
+      add(p[1], q[1], q[0]);
+    }
+  };
+  // a g x g grid on the plane through `o` spanned by u and v, its lower copy on the other
+  // diagonals with inner points of its own; the volume terms of its triangles oriented alike
+  // (before `add()` reverses some) summed into `sum` and `magnitude`
+  double sum = 0, magnitude = 0;
+  const auto pillow = [&](std::array<double, 3> o, int g) {
+    const double u[3] = {0.31, 0.07, 0.13}, v[3] = {-0.05, 0.29, 0.11};
+    std::vector<std::size_t> top, bottom;
+    for(int j = 0; j <= g; ++j)
+      for(int i = 0; i <= g; ++i) {
+        const double x = o[0] + i * u[0] + j * v[0], y = o[1] + i * u[1] + j * v[1], z = o[2] + i * u[2] + j * v[2];
+        top.push_back(point(x, y, z));
+        const bool border = i == 0 || j == 0 || i == g || j == g;
+        bottom.push_back(border ? top.back() : point(x, y, z));
+      }
+    const auto at = [&](const std::vector<std::size_t>& grid, int i, int j) {
+      return grid[std::size_t(j * (g + 1) + i)];
+    };
+    const auto add_alike = [&](std::size_t a, std::size_t b, std::size_t c) {
+      const double term = CGAL::to_double(CGAL::volume(Point(0, 0, 0), points[a], points[b], points[c]));
+      sum += term;
+      magnitude += std::abs(term);
+      add(a, b, c);
+    };
+    sum = magnitude = 0;
+    for(int j = 0; j < g; ++j)
+      for(int i = 0; i < g; ++i) {
+        add_alike(at(top, i, j), at(top, i + 1, j), at(top, i + 1, j + 1));
+        add_alike(at(top, i, j), at(top, i + 1, j + 1), at(top, i, j + 1));
+        add_alike(at(bottom, i, j), at(bottom, i, j + 1), at(bottom, i + 1, j));
+        add_alike(at(bottom, i + 1, j), at(bottom, i, j + 1), at(bottom, i + 1, j + 1));
+      }
+  };
+  const auto cube = [&](double x, double y, double z, double side) {
+    std::array<std::size_t, 8> c;
+    for(int k = 0; k < 8; ++k)
+      c[std::size_t(k)] = point(x + side * (k & 1), y + side * ((k >> 1) & 1), z + side * ((k >> 2) & 1));
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for(const auto& q : quads) {
+      add(c[std::size_t(q[0])], c[std::size_t(q[1])], c[std::size_t(q[2])]);
+      add(c[std::size_t(q[0])], c[std::size_t(q[2])], c[std::size_t(q[3])]);
+    }
+  };
+  moebius(0, 12000);
+  for(int k = 0; k < 40; ++k) moebius(10 + 6 * k, 10 + k % 7);
+  const std::size_t big_pillow_begin = triangles.size();
+  pillow({{1000.3, -7.1, 3.3}}, 100);
+  const std::size_t big_pillow_end = triangles.size();
+  // Its volume, summed in the order of construction, is a cancellation that decides no sign.
+  EXPECT_GT(magnitude, 1e3);
+  EXPECT_FALSE(ST::internal::sum_has_certain_sign(sum, magnitude, big_pillow_end - big_pillow_begin));
+  for(int k = 0; k < 60; ++k) pillow({{-500.7 - 9 * k, 13.9 + k, 101.1}}, 2 + k % 3);
+  for(int k = 0; k < 30; ++k) cube(3000 + 3 * k, 0, 0, 1);
+  cube(4000, 0, 0, 10);
+  cube(4003, 3, 3, 2);
+  ASSERT_GT(big_pillow_end - big_pillow_begin, 2 * ST::internal::default_block_size);
+  shuffle_triangles(triangles, 43);
+  for(const ST::Orientation_policy policy :
+      {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT, ST::Orientation_policy::OUTWARD}) {
+    SCOPED_TRACE("policy " + std::to_string(static_cast<int>(policy)));
+    const auto np = ST::parameters::orientation_policy(policy);
+    auto ep = points;
+    auto et = triangles;
+    const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et, np);
+    EXPECT_GT(expected.duplicated_points, 0u); // the Moebius strips' cuts leave vertices of two fans
+    for_each_thread_count([&](int) {
+      auto p = points;
+      auto t = triangles;
+      const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t, np);
+      EXPECT_EQ(std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points),
+                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
+      EXPECT_EQ(bits(p), bits(ep));
+      EXPECT_EQ(t, et);
+      auto q = points;
+      auto u = triangles;
+      const ST::Adjacency_tables tables(u, q.size(), Parallel());
+      ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables, np);
+      EXPECT_EQ(bits(q), bits(ep));
+      EXPECT_EQ(u, et);
+    });
+  }
+}
+
+TEST(ParallelOrientation, VolumeSignsCertainInOneOrderAreTheSignsOfEveryOrder)
+{
+  // Terms that cancel to various degrees, summed in several orders: whenever the sum in one
+  // order is certain (`sum_has_certain_sign()`), every order gives a sum of the same sign, not 0;
+  // a sum of pairs that cancel exactly is never certain.
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t certain = 0, uncertain = 0;
+  for(int trial = 0; trial < 400; ++trial) {
+    const std::size_t count = 2 + rng() % 3000;
+    std::vector<double> terms(count);
+    for(double& x : terms) x = unit(rng) * std::ldexp(1.0, int(rng() % 60) - 30);
+    // shift the total towards 0 by a remainder of the trial's own scale
+    double exact_shift = 0;
+    for(double x : terms) exact_shift += x;
+    terms.push_back(-exact_shift + unit(rng) * std::ldexp(1.0, -int(rng() % 80)));
+    std::vector<double> sums;
+    double magnitude = 0;
+    for(double x : terms) magnitude += std::abs(x);
+    for(int order = 0; order < 4; ++order) {
+      if(order == 1) std::sort(terms.begin(), terms.end());
+      if(order == 2) std::reverse(terms.begin(), terms.end());
+      if(order == 3) std::shuffle(terms.begin(), terms.end(), rng);
+      double sum = 0;
+      for(double x : terms) sum += x;
+      sums.push_back(sum);
+    }
+    for(double sum : sums) {
+      if(!ST::internal::sum_has_certain_sign(sum, magnitude, terms.size())) {
+        ++uncertain;
+        continue;
+      }
+      ++certain;
+      for(double other : sums) EXPECT_EQ(other < 0, sum < 0) << trial;
+      for(double other : sums) EXPECT_NE(other, 0.0) << trial;
+    }
+    std::vector<double> pairs;
+    for(std::size_t k = 0; k < count; ++k) {
+      pairs.push_back(terms[k]);
+      pairs.push_back(-terms[k]);
+    }
+    std::shuffle(pairs.begin(), pairs.end(), rng);
+    double sum = 0, pair_magnitude = 0;
+    for(double x : pairs) {
+      sum += x;
+      pair_magnitude += std::abs(x);
+    }
+    EXPECT_FALSE(ST::internal::sum_has_certain_sign(sum, pair_magnitude, pairs.size())) << trial;
+  }
+  EXPECT_GT(certain, 100u);
+  EXPECT_GT(uncertain, 100u);
+}
+
 TEST(ParallelSTL, WriteTheSameBytesAndRefusals)
 {
   Mesh_data m = load("clean/elephant.off");

@@ -88,10 +88,16 @@ using Face_graph_output_report = Orientation_report;
 /// A soup that is already a consistently oriented closed manifold keeps its triangles, or has
 /// each closed component reversed as a whole by the policy.
 ///
-/// With `CGAL::Parallel_tag` the adjacency tables, the search for repeated triangles, the fans of
-/// the vertices, the closed patches, their volumes and the writing back run on TBB's threads (the
-/// breadth-first traversals stay on the calling thread); the result is the same, bit for bit, on
-/// any number of threads.
+/// With `CGAL::Parallel_tag` the adjacency tables, the search for repeated triangles, the
+/// patches and the orientation of their triangles, the fans of the vertices, the closed patches,
+/// their volumes and the writing back run on TBB's threads; the result is the same, bit for bit,
+/// on any number of threads. On several threads the patches are joined by a union-find that
+/// keeps, for every two triangles of a set, whether they must be oriented alike, by blocks of
+/// triangles, instead of being traversed: it gives the orientations of the traversal from each
+/// patch's smallest triangle. A traversal is still made, patch by patch, where a decision depends
+/// on its order: the cuts of a non-orientable patch, the nesting test between closed patches (its
+/// samples and winding numbers), and the volume of a closed patch whose sign the sum in another
+/// order does not decide (a volume that is 0 up to rounding).
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the default), `CGAL::Parallel_tag` (needs TBB)
 ///         or `CGAL::Parallel_if_available_tag`

@@ -15,6 +15,7 @@
 #include <Soup_topology/internal/separate_non_manifold.h>
 #include <Soup_topology/internal/soup_checks.h>
 #include <Soup_topology/internal/uninitialized_vector.h>
+#include <Soup_topology/internal/union_find.h>
 
 #include <CGAL/number_utils.h>
 
@@ -23,12 +24,26 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 #include <vector>
 
 namespace Soup_topology {
 namespace internal {
+
+/// Whether `sum`, the sum in double of `count` terms in some order, has the sign of the terms'
+/// exact sum, and so of their sum in double in any other order (which is then not 0 either):
+/// true if it lies farther from 0 than 3 `count` u `magnitude`, `magnitude` the sum in double of
+/// the terms' magnitudes, u = 2^-53. (Any order of summation errs by at most (count - 1) u /
+/// (1 - (count - 1) u) times the exact sum of the magnitudes; two such errors, and the rounding of
+/// `magnitude`, stay below the bound. Additions whose results are below the normal range are
+/// exact; an overflow gives no certainty.)
+inline bool sum_has_certain_sign(double sum, double magnitude, std::size_t count)
+{
+  const double bound = 3 * double(count) * (std::numeric_limits<double>::epsilon() / 2) * magnitude;
+  return std::isfinite(sum) && std::isfinite(bound) && std::abs(sum) > bound;
+}
 
 /// How `Soup_orienter` turns a patch whose triangles form a closed surface.
 struct Patch_orientation_rules
@@ -117,18 +132,20 @@ public:
       throw Invalid_input("orientation: the adjacency tables given are not those of the soup");
   }
 
-  /// orients the soup; with the tag the tables, the repeated triangles, the fans of the vertices,
-  /// the closed patches, the volumes and the writing back run on TBB's threads, by blocks put
-  /// together in block order (the traversals of the patches and the decisions that follow an
-  /// order stay sequential): the result is the same on any number of threads.
+  /// orients the soup; with the tag the tables, the repeated triangles, the patches and their
+  /// orientations (`join_patches()`), the fans of the vertices, the closed patches, the volumes
+  /// and the writing back run on TBB's threads, by blocks put together in block order (the
+  /// traversals of the patches that a decision needs and the decisions that follow an order stay
+  /// sequential): the result is the same on any number of threads.
   template <class ConcurrencyTag = CGAL::Sequential_tag>
   Counts run()
   {
     if(!tables_) build_own_tables<ConcurrencyTag>();
     if(remove_repeated_triangles<ConcurrencyTag>()) build_own_tables<ConcurrencyTag>();
-    orient_patches();
+    orient_patches<ConcurrencyTag>();
     separate_fans<ConcurrencyTag>();
     find_closed_patches<ConcurrencyTag>();
+    traverse_where_decisions_need_it<ConcurrencyTag>();
     // The steps left read the triangles, not their neighbours: tables of its own go first (the
     // peak of the orientation is then the tables, not the tables and what comes after).
     release_own_tables();
@@ -413,29 +430,45 @@ private:
     return cut_an_edge;
   }
 
+  // The patches (their triangles in `patch_order_`, patch after patch, and `patch_`), the
+  // orientation of every triangle relative to the first triangle of its patch (`reversed_`),
+  // and the edges cut in the non-orientable patches. On several threads with the tag the
+  // patches are joined by `join_patches()`, their triangles then in increasing order in
+  // `patch_order_` (a traversal's order is written there only for the patches whose decisions
+  // depend on it: `write_traversal_orders()`); otherwise each patch is traversed from its first
+  // triangle. Both give the same patches, numbers, orientations and cuts.
+  template <class ConcurrencyTag>
   void orient_patches()
   {
     const std::size_t n = tables_->number_of_triangles();
-    reversed_.assign(n, 0);
-    patch_.assign(n, unset);
-    cut_.assign(3 * n, 0);
-    patch_order_.clear();
-    patch_order_.reserve(n);
-    patch_begin_.clear();
     std::vector<size_type> non_orientable;
-    for(size_type seed = 0; seed < n; ++seed) {
-      if(patch_[seed] != unset) continue;
-      const size_type p = static_cast<size_type>(patch_begin_.size());
-      patch_begin_.push_back(patch_order_.size());
-      if(orient_patch_from(seed, p, false)) non_orientable.push_back(p);
+    // (the edges between blocks of `join_patches()` are listed as corners of 32 bits)
+    if(runs_on_several_threads<ConcurrencyTag>() && n < (std::size_t(1) << 32) / 3) {
+      join_patches<ConcurrencyTag>(non_orientable);
+      traversed_.assign(patch_begin_.size() - 1, 0);
+    } else {
+      reversed_.assign(n, 0);
+      patch_.assign(n, unset);
+      cut_.assign(3 * n, 0);
+      patch_order_.clear();
+      patch_order_.reserve(n);
+      patch_begin_.clear();
+      for(size_type seed = 0; seed < n; ++seed) {
+        if(patch_[seed] != unset) continue;
+        const size_type p = static_cast<size_type>(patch_begin_.size());
+        patch_begin_.push_back(patch_order_.size());
+        if(orient_patch_from(seed, p, false)) non_orientable.push_back(p);
+      }
+      patch_begin_.push_back(n);
+      traversed_.assign(patch_begin_.size() - 1, 1);
     }
-    patch_begin_.push_back(n);
     non_orientable_.assign(patch_begin_.size() - 1, 0);
     // Where a cut is needed, which edges are cut depends on the traversal: start again from the
     // canonically smallest triangle, edges in canonical order, so that the input does not decide.
     std::vector<size_type> members;
     for(size_type p : non_orientable) {
       non_orientable_[p] = 1;
+      traversed_[p] = 1;
       members.assign(patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]),
                      patch_order_.begin() + std::ptrdiff_t(patch_begin_[p + 1]));
       for(size_type t : members) {
@@ -450,6 +483,144 @@ private:
                 patch_order_.begin() + std::ptrdiff_t(patch_begin_[p]));
       patch_order_.resize(end);
     }
+  }
+
+  // Whether triangle u, across the manifold edge i of t, runs that edge in the same direction
+  // as t: the two must then be oriented differently (one of them reversed).
+  bool runs_shared_edge_alike(size_type t, int i, size_type u) const
+  {
+    const size_type a = tables_->vertex(t, i);
+    const int j = tables_->edge_index(u, a, tables_->vertex(t, (i + 1) % 3));
+    return tables_->vertex(u, j) == a;
+  }
+
+  // The patches without traversing them: the triangles joined across their manifold edges in
+  // sets that know, for every two triangles, whether they must be oriented alike
+  // (`Parity_union_find`, whose root is a set's smallest triangle); by blocks of triangles on
+  // TBB's threads, each block alone with the edges inside it, then one thread with the edges
+  // between blocks. A triangle's orientation relative to its root is what the traversal from
+  // that triangle gives, when the patch is orientable (every edge agrees with the others); a
+  // patch where an edge disagrees is listed in `non_orientable` (increasing), its orientations
+  // and cuts left to the canonical traversal. The patches are numbered by their smallest
+  // triangles, as the traversals number them; `patch_order_` lists their triangles in increasing
+  // order.
+  template <class ConcurrencyTag>
+  void join_patches(std::vector<size_type>& non_orientable)
+  {
+    const std::size_t n = tables_->number_of_triangles();
+    const std::size_t blocks = number_of_blocks(n, block_size);
+    std::vector<std::vector<size_type>> disagreeing(blocks);
+    reversed_.resize(n);
+    patch_.resize(n);
+    std::vector<std::size_t> roots_before(blocks + 1, 0);
+    {
+      Parity_union_find sets(n);
+      // (the edges between blocks as corners 3 t + i: 4 bytes each, `orient_patches()` checks 3 n < 2^32)
+      std::vector<std::vector<std::uint32_t>> between(blocks);
+      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        sets.make_singletons(begin, end);
+        for(std::size_t t = begin; t < end; ++t)
+          for(int i = 0; i < 3; ++i) {
+            const size_type u = tables_->neighbor(size_type(t), i);
+            if(u >= Adjacency_tables::non_manifold_edge || u <= t) continue;
+            if(u >= end) between[b].push_back(static_cast<std::uint32_t>(3 * t + std::size_t(i)));
+            else if(!sets.unite_alone(size_type(t), u, runs_shared_edge_alike(size_type(t), i, u)))
+              disagreeing[b].push_back(size_type(t));
+          }
+      });
+      for(std::size_t b = 0; b < blocks; ++b) {
+        for(const std::uint32_t corner : between[b]) {
+          const size_type t = corner / 3, u = tables_->neighbor(t, int(corner % 3));
+          if(!sets.unite_alone(t, u, runs_shared_edge_alike(t, int(corner % 3), u))) disagreeing[b].push_back(t);
+        }
+        std::vector<std::uint32_t>().swap(between[b]);
+      }
+      // Every triangle's root (in `patch_` for now) and orientation relative to it, by blocks in
+      // increasing order (a parent in the block has them already); the roots of every block counted.
+      for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        std::size_t roots = 0;
+        for(std::size_t t = begin; t < end; ++t) {
+          const auto [p, differs] = sets.parent(size_type(t));
+          if(p == t) {
+            patch_[t] = p;
+            reversed_[t] = 0;
+            ++roots;
+          } else if(p >= begin) {
+            patch_[t] = patch_[p];
+            reversed_[t] = static_cast<char>(reversed_[p] != (differs ? 1 : 0));
+          } else {
+            const auto [r, parity] = sets.find(size_type(t));
+            patch_[t] = r;
+            reversed_[t] = parity ? 1 : 0;
+          }
+        }
+        roots_before[b + 1] = roots;
+      });
+    }
+    for(std::size_t b = 0; b < blocks; ++b) roots_before[b + 1] += roots_before[b];
+    const std::size_t patches = roots_before[blocks];
+    // The number of every patch: its root's rank among the roots, written over the root's entry
+    // (a root is its own root: `patch_[t] == t`), then read by the other triangles.
+    Uninitialized_vector<char> is_root(n); // every entry written below
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      std::size_t next = roots_before[b];
+      for(std::size_t t = begin; t < end; ++t) {
+        is_root[t] = patch_[t] == t;
+        if(is_root[t]) patch_[t] = static_cast<size_type>(next++);
+      }
+    });
+    for_each_block<ConcurrencyTag>(n, block_size, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for(std::size_t t = begin; t < end; ++t)
+        if(!is_root[t]) patch_[t] = patch_[patch_[t]];
+    });
+    Uninitialized_vector<char>().swap(is_root);
+    cut_.assign(3 * n, 0);
+    // The triangles of every patch, in increasing order: the patches' sizes, their ends, then
+    // the triangles placed from the last (`patch_begin_[p]` ends at the start of patch p).
+    patch_begin_.assign(patches + 1, 0);
+    for(std::size_t t = 0; t < n; ++t) ++patch_begin_[patch_[t]];
+    for(std::size_t p = 1; p < patches; ++p) patch_begin_[p] += patch_begin_[p - 1];
+    patch_begin_[patches] = n;
+    patch_order_.resize(n);
+    for(std::size_t t = n; t-- > 0;) patch_order_[--patch_begin_[patch_[t]]] = size_type(t);
+    for(const std::vector<size_type>& list : disagreeing)
+      for(size_type t : list) non_orientable.push_back(patch_[t]);
+    std::sort(non_orientable.begin(), non_orientable.end());
+    non_orientable.erase(std::unique(non_orientable.begin(), non_orientable.end()), non_orientable.end());
+  }
+
+  // The triangles of the patches `patches` (numbers) in the order of the traversal of
+  // `orient_patch_from()` from their first triangle, written over their increasing order in
+  // `patch_order_`, for those whose order is not a traversal's yet; patch by patch on TBB's
+  // threads with the tag. Only orientable patches are not traversed already: no edge of theirs
+  // is cut.
+  template <class ConcurrencyTag>
+  void write_traversal_orders(const std::vector<size_type>& patches)
+  {
+    std::vector<size_type> to_traverse;
+    for(size_type p : patches)
+      if(!traversed_[p]) to_traverse.push_back(p);
+    if(to_traverse.empty()) return;
+    if(reached_.empty()) reached_.assign(tables_->number_of_triangles(), 0);
+    for_each_patch<ConcurrencyTag>(to_traverse, [&](std::size_t k) {
+      const size_type p = to_traverse[k];
+      const std::size_t begin = patch_begin_[p], size = patch_begin_[p + 1] - begin;
+      std::vector<size_type> order;
+      order.reserve(size);
+      order.push_back(patch_order_[begin]);
+      reached_[order.back()] = 1;
+      for(std::size_t head = 0; head < order.size(); ++head) {
+        const size_type t = order[head];
+        for(int i = 0; i < 3; ++i) {
+          const size_type u = tables_->neighbor(t, i);
+          if(u >= Adjacency_tables::non_manifold_edge || reached_[u]) continue;
+          reached_[u] = 1;
+          order.push_back(u);
+        }
+      }
+      std::copy(order.begin(), order.end(), patch_order_.begin() + std::ptrdiff_t(begin));
+      traversed_[p] = 1;
+    });
   }
 
   // --- Step 3: non-manifold vertices -----------------------------------------------------------
@@ -616,18 +787,100 @@ private:
 
   const std::array<double, 3>& xyz(std::size_t v) const { return xyz_[v]; }
 
-  // Six times the signed volume of the patch as oriented by step 2.
+  // Six times the signed volume of the tetrahedron (origin, a, b, d): the term of a triangle
+  // (a, b, d) in the volume of its patch.
+  static double volume_term(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                            const std::array<double, 3>& d)
+  {
+    return a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+  }
+
+  // Six times the signed volume of the patch as oriented by step 2, summed in the order of its
+  // traversal (`traversed_[p]`).
   double patch_volume(size_type p) const
   {
     double volume = 0;
     for(std::size_t k = patch_begin_[p]; k < patch_begin_[p + 1]; ++k) {
       const size_type t = patch_order_[k];
-      const std::array<double, 3>& a = xyz(vertex(t, 0));
-      const std::array<double, 3>& b = xyz(vertex(t, reversed_[t] ? 2 : 1));
-      const std::array<double, 3>& d = xyz(vertex(t, reversed_[t] ? 1 : 2));
-      volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+      volume +=
+        volume_term(xyz(vertex(t, 0)), xyz(vertex(t, reversed_[t] ? 2 : 1)), xyz(vertex(t, reversed_[t] ? 1 : 2)));
     }
     return volume;
+  }
+
+  // The coordinates of point v in double, as `xyz_` holds them (computed here before `xyz_`
+  // exists: the tables and `xyz_` are not held together).
+  std::array<double, 3> point_in_double(std::size_t v) const
+  {
+    return {CGAL::to_double(points_[v].x()), CGAL::to_double(points_[v].y()), CGAL::to_double(points_[v].z())};
+  }
+
+  // The sign of the volume of patch p in double, summed in increasing order of its triangles, if
+  // that sum decides the sign of the sum in any order (`sum_has_certain_sign()`), so of
+  // `patch_volume()`: -1 (negative) or 1 (positive); 0 if it does not. By blocks of its triangles
+  // on TBB's threads with the tag (with coordinates stored as double), the blocks' sums added in
+  // block order.
+  template <class ConcurrencyTag>
+  signed char certain_volume_sign(size_type p) const
+  {
+    using Tag =
+      std::conditional_t<std::is_same<typename Kernel::FT, double>::value, ConcurrencyTag, CGAL::Sequential_tag>;
+    const std::size_t begin = patch_begin_[p], size = patch_begin_[p + 1] - begin;
+    struct Sums { double sum = 0, magnitude = 0; };
+    std::vector<Sums> by_block(number_of_blocks(size, block_size));
+    for_each_block<Tag>(size, block_size, [&](std::size_t g, std::size_t first, std::size_t last) {
+      for(std::size_t k = begin + first; k < begin + last; ++k) {
+        const size_type t = patch_order_[k];
+        const double term = volume_term(point_in_double(vertex(t, 0)), point_in_double(vertex(t, reversed_[t] ? 2 : 1)),
+                                        point_in_double(vertex(t, reversed_[t] ? 1 : 2)));
+        by_block[g].sum += term;
+        by_block[g].magnitude += std::abs(term);
+      }
+    });
+    Sums total;
+    for(const Sums& g : by_block) {
+      total.sum += g.sum;
+      total.magnitude += g.magnitude;
+    }
+    if(!sum_has_certain_sign(total.sum, total.magnitude, size)) return 0;
+    return total.sum < 0 ? -1 : 1;
+  }
+
+  // Before the tables go (`release_own_tables()`): the patches whose decisions follow the order
+  // of a traversal, and that `join_patches()` did not traverse, are traversed
+  // (`write_traversal_orders()`). Those are the closed patches when they are tested for nesting
+  // (their samples and winding numbers) or told to `decisions_`, and the patches decided by
+  // their volume whose sign the sum in increasing order does not decide (`certain_volume_sign()`,
+  // kept in `volume_sign_` for `choose_patch_orientations()`). Large patches are summed one after
+  // the other by blocks, the others one per task.
+  template <class ConcurrencyTag>
+  void traverse_where_decisions_need_it()
+  {
+    const std::size_t number_of_patches = patch_begin_.size() - 1;
+    volume_sign_.assign(number_of_patches, 0);
+    if(std::all_of(traversed_.begin(), traversed_.end(), [](char c) { return c != 0; })) return;
+    std::vector<size_type> by_volume, closed_patches;
+    for(size_type p = 0; p < number_of_patches; ++p) {
+      if(!closed_[p]) continue;
+      closed_patches.push_back(p);
+      if(!(rules_.keep_consistent_input && is_consistent_as_read(p))) by_volume.push_back(p);
+    }
+    if((rules_.nest_closed_patches && closed_patches.size() > 1 && !by_volume.empty()) || decisions_ != nullptr) {
+      write_traversal_orders<ConcurrencyTag>(closed_patches);
+      return;
+    }
+    std::vector<size_type> small, undecided;
+    for(size_type p : by_volume) {
+      if(traversed_[p]) continue;
+      if(patch_begin_[p + 1] - patch_begin_[p] <= block_size) small.push_back(p);
+      else volume_sign_[p] = certain_volume_sign<ConcurrencyTag>(p);
+    }
+    for_each_patch<ConcurrencyTag>(small, [&](std::size_t k) {
+      volume_sign_[small[k]] = certain_volume_sign<CGAL::Sequential_tag>(small[k]);
+    });
+    for(size_type p : by_volume)
+      if(!traversed_[p] && volume_sign_[p] == 0) undecided.push_back(p);
+    write_traversal_orders<ConcurrencyTag>(undecided);
   }
 
   // The generalised winding number of the (closed) patch p around point q: the sum of the solid
@@ -736,18 +989,22 @@ private:
     if(by_volume.empty()) return;
     std::vector<std::size_t> depth(number_of_patches, 0);
     if(rules_.nest_closed_patches && closed_patches.size() > 1) { // one closed patch alone is at depth 0
+      // (traversed: the samples and the winding numbers follow the order of the traversals)
       const std::vector<std::size_t> d = nesting_depths<ConcurrencyTag>(closed_patches);
       for(std::size_t c = 0; c < closed_patches.size(); ++c) depth[closed_patches[c]] = d[c];
     }
-    // one volume per patch, each summed in the order of its triangles by one thread
+    // one volume per patch, each summed in the order of its traversal by one thread, or its
+    // sign known (`traverse_where_decisions_need_it()`)
     for_each_patch<ConcurrencyTag>(by_volume, [&](std::size_t k) {
       const size_type p = by_volume[k];
-      turn_[p] = ((patch_volume(p) < 0) != (depth[p] % 2 == 1)) ? 1 : 0;
+      const bool negative = traversed_[p] ? patch_volume(p) < 0 : volume_sign_[p] < 0;
+      turn_[p] = (negative != (depth[p] % 2 == 1)) ? 1 : 0;
     });
   }
 
   // The closed patches and how they were turned, for `decisions_` (before `write_back()`: the
   // corners are still those given).
+  // (the closed patches are traversed: `traverse_where_decisions_need_it()`)
   void tell_closed_patches()
   {
     for(size_type p = 0; p + 1 < patch_begin_.size(); ++p) {
@@ -795,8 +1052,11 @@ private:
   Adjacency_tables own_tables_;
   std::vector<size_type> rank_;
   std::vector<char> reversed_, cut_, non_orientable_, closed_, turn_;
+  std::vector<char> traversed_; // per patch: whether `patch_order_` lists it in the order of a traversal
+  std::vector<char> reached_;   // per triangle, for `write_traversal_orders()` (each patch marks its own)
+  std::vector<signed char> volume_sign_; // per patch: the sign of its volume where a sum in any order decides it
   std::vector<size_type> patch_;
-  std::vector<size_type> patch_order_;   // the triangles, patch after patch
+  std::vector<size_type> patch_order_;   // the triangles, patch after patch (increasing, or traversed)
   std::vector<std::size_t> patch_begin_; // patch p is patch_order_[patch_begin_[p], patch_begin_[p + 1])
   // the vertex of every corner in the output (`separate_fans()`); empty when no corner moves to a
   // copy of its vertex (a soup without non-manifold vertices), every corner then keeping its own
