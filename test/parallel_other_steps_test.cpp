@@ -342,6 +342,36 @@ std::vector<Triangle> with_repeats_and_reversals(const std::vector<Triangle>& tr
   return out;
 }
 
+// The orientation of the soup with `np` on every thread count, with and without its tables at
+// hand, against the sequential one: the same points bit for bit, triangles and counts. Returns
+// the sequential report.
+template <class NamedParameters>
+ST::Orientation_report expect_orientation_as_sequential(const std::vector<Point>& points,
+                                                        const std::vector<Triangle>& triangles,
+                                                        const NamedParameters& np)
+{
+  auto ep = points;
+  auto et = triangles;
+  const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et, np);
+  const auto counts = [](const ST::Orientation_report& r) {
+    return std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points);
+  };
+  for_each_thread_count([&](int) {
+    auto p = points;
+    auto t = triangles;
+    EXPECT_EQ(counts(ST::orient_triangle_soup<Parallel>(p, t, np)), counts(expected));
+    EXPECT_EQ(bits(p), bits(ep));
+    EXPECT_EQ(t, et);
+    auto q = points;
+    auto u = triangles;
+    const ST::Adjacency_tables tables(u, q.size(), Parallel());
+    EXPECT_EQ(counts(ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables, np)), counts(expected));
+    EXPECT_EQ(bits(q), bits(ep));
+    EXPECT_EQ(u, et);
+  });
+  return expected;
+}
+
 TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
 {
   // A soup large enough for many blocks of triangles and of vertices: the repaired T-junction
@@ -383,28 +413,9 @@ TEST(ParallelRobustnessSoup, OrientationOverManyBlocksAndManyPatches)
       {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT, ST::Orientation_policy::OUTWARD}) {
     SCOPED_TRACE("policy " + std::to_string(static_cast<int>(policy)));
     const auto np = ST::parameters::orientation_policy(policy);
-    auto ep = points;
-    auto et = triangles;
-    const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et, np);
-    ASSERT_GT(expected.duplicate_triangles, 0u);
-    ASSERT_GT(expected.orientation_flips, 0u);
-    for_each_thread_count([&](int) {
-      auto p = points;
-      auto t = triangles;
-      const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t, np);
-      EXPECT_EQ(std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points),
-                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
-      EXPECT_EQ(bits(p), bits(ep));
-      EXPECT_EQ(t, et);
-      auto q = points;
-      auto u = triangles;
-      const ST::Adjacency_tables tables(u, q.size(), Parallel());
-      const ST::Orientation_report w = ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables, np);
-      EXPECT_EQ(std::make_tuple(w.duplicate_triangles, w.orientation_flips, w.duplicated_points),
-                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
-      EXPECT_EQ(bits(q), bits(ep));
-      EXPECT_EQ(u, et);
-    });
+    const ST::Orientation_report expected = expect_orientation_as_sequential(points, triangles, np);
+    EXPECT_GT(expected.duplicate_triangles, 0u);
+    EXPECT_GT(expected.orientation_flips, 0u);
   }
 }
 
@@ -507,25 +518,8 @@ TEST(ParallelRobustnessSoup, OrientationOfNonOrientableAndFlatClosedPatches)
       {ST::Orientation_policy::BOUND_VOLUME, ST::Orientation_policy::KEEP_INPUT, ST::Orientation_policy::OUTWARD}) {
     SCOPED_TRACE("policy " + std::to_string(static_cast<int>(policy)));
     const auto np = ST::parameters::orientation_policy(policy);
-    auto ep = points;
-    auto et = triangles;
-    const ST::Orientation_report expected = ST::orient_triangle_soup(ep, et, np);
+    const ST::Orientation_report expected = expect_orientation_as_sequential(points, triangles, np);
     EXPECT_GT(expected.duplicated_points, 0u); // the Moebius strips' cuts leave vertices of two fans
-    for_each_thread_count([&](int) {
-      auto p = points;
-      auto t = triangles;
-      const ST::Orientation_report r = ST::orient_triangle_soup<Parallel>(p, t, np);
-      EXPECT_EQ(std::make_tuple(r.duplicate_triangles, r.orientation_flips, r.duplicated_points),
-                std::make_tuple(expected.duplicate_triangles, expected.orientation_flips, expected.duplicated_points));
-      EXPECT_EQ(bits(p), bits(ep));
-      EXPECT_EQ(t, et);
-      auto q = points;
-      auto u = triangles;
-      const ST::Adjacency_tables tables(u, q.size(), Parallel());
-      ST::internal::orient_triangle_soup_with_tables<Parallel>(q, u, &tables, np);
-      EXPECT_EQ(bits(q), bits(ep));
-      EXPECT_EQ(u, et);
-    });
   }
 }
 

@@ -867,6 +867,7 @@ private:
     }
     if((rules_.nest_closed_patches && closed_patches.size() > 1 && !by_volume.empty()) || decisions_ != nullptr) {
       write_traversal_orders<ConcurrencyTag>(closed_patches);
+      std::vector<char>().swap(reached_);
       return;
     }
     std::vector<size_type> small, undecided;
@@ -881,6 +882,7 @@ private:
     for(size_type p : by_volume)
       if(!traversed_[p] && volume_sign_[p] == 0) undecided.push_back(p);
     write_traversal_orders<ConcurrencyTag>(undecided);
+    std::vector<char>().swap(reached_); // (no traversal follows)
   }
 
   // The generalised winding number of the (closed) patch p around point q: the sum of the solid
@@ -1053,7 +1055,7 @@ private:
   std::vector<size_type> rank_;
   std::vector<char> reversed_, cut_, non_orientable_, closed_, turn_;
   std::vector<char> traversed_; // per patch: whether `patch_order_` lists it in the order of a traversal
-  std::vector<char> reached_;   // per triangle, for `write_traversal_orders()` (each patch marks its own)
+  std::vector<char> reached_;   // per triangle, while `write_traversal_orders()` runs (each patch marks its own)
   std::vector<signed char> volume_sign_; // per patch: the sign of its volume where a sum in any order decides it
   std::vector<size_type> patch_;
   std::vector<size_type> patch_order_;   // the triangles, patch after patch (increasing, or traversed)
